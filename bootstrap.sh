@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# bootstrap.sh — installs every Debian package frontsteal needs, and nothing else.
+#
+# Idempotent: packages already present are left alone (apt-get install is a no-op for them), and the
+# apt-get update step is skipped when every package is already installed, so the README's commands stay
+# fast on a machine that has run them before. Needs root (or sudo) on Debian 12.
+set -euo pipefail
+
+packages=(
+  # build
+  g++ cmake ninja-build make pkg-config
+  # tests and benchmarks
+  catch2 libbenchmark-dev
+  # model checking (models_check/): Relacy, header-only
+  relacy-dev
+  # ThreadSanitizer runtime for g++ 12 (stress/)
+  libtsan2
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "bootstrap: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+echo "bootstrap: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -q
+"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+echo "bootstrap: done"

@@ -1,0 +1,62 @@
+// frame_stats.hpp — what one frame cost, per worker: the numbers behind utilization (paper Table 1).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+namespace frontsteal {
+
+struct WorkerFrameStats {
+  std::uint64_t items_processed = 0;     // calls of the item function by this worker
+  std::uint64_t steal_attempts = 0;      // victims examined
+  std::uint64_t steals_lock_busy = 0;    // ... whose LockList another thief held
+  std::uint64_t steals_empty = 0;        // ... that had nothing left
+  std::uint64_t steals_skipped_all = 0;  // ... whose whole share the victim claimed before the re-read
+  std::uint64_t steals_succeeded = 0;    // ... that yielded a non-empty share
+  std::uint64_t items_stolen = 0;        // items in the shares kept
+  std::uint64_t items_skipped = 0;       // items dropped after the re-read of Front (the victim's claims)
+  std::int64_t busy_ns = 0;              // time inside the owner loop (claiming and processing)
+  std::int64_t idle_ns = 0;              // the rest of the worker's frame: stealing and waiting for the end
+
+  WorkerFrameStats& operator+=(const WorkerFrameStats& o) {
+    items_processed += o.items_processed;
+    steal_attempts += o.steal_attempts;
+    steals_lock_busy += o.steals_lock_busy;
+    steals_empty += o.steals_empty;
+    steals_skipped_all += o.steals_skipped_all;
+    steals_succeeded += o.steals_succeeded;
+    items_stolen += o.items_stolen;
+    items_skipped += o.items_skipped;
+    busy_ns += o.busy_ns;
+    idle_ns += o.idle_ns;
+    return *this;
+  }
+};
+
+struct FrameStats {
+  std::uint32_t frame = 0;
+  std::int64_t wall_ns = 0;  // caller's view: release of the frame to its completion
+  std::vector<WorkerFrameStats> workers;
+
+  WorkerFrameStats totals() const {
+    WorkerFrameStats t;
+    for (const auto& w : workers) t += w;
+    return t;
+  }
+  // Paper Table 1's utilization: busy time over the time all workers were available.
+  double utilization() const {
+    if (wall_ns <= 0 || workers.empty()) return 0.0;
+    return static_cast<double>(totals().busy_ns) / (static_cast<double>(wall_ns) * workers.size());
+  }
+  // Max over mean busy time: 1.0 is perfect balance.
+  double imbalance() const {
+    if (workers.empty()) return 0.0;
+    std::int64_t max_busy = 0;
+    for (const auto& w : workers) max_busy = std::max(max_busy, w.busy_ns);
+    const double mean = static_cast<double>(totals().busy_ns) / workers.size();
+    return mean > 0 ? max_busy / mean : 0.0;
+  }
+};
+
+}  // namespace frontsteal

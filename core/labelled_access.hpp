@@ -1,0 +1,67 @@
+// labelled_access.hpp — the only way protocol files touch shared memory: one call per labelled site.
+//
+// Access<Backend, Policy>::load<Site::kOwnerReadEnd>(slot.end) asks the policy for the site's order, checks
+// at compile time that the site is a load, and passes the site and the caller's source location to the
+// backend. A protocol file therefore never names a memory order, a fence instruction or a backend type: the
+// orders live in policies.hpp, the instructions in the backend.
+#pragma once
+
+#include <source_location>
+
+#include "core/memory_order.hpp"
+#include "core/site.hpp"
+
+namespace frontsteal {
+
+template <class Backend, class Policy>
+struct Access {
+  using Where = std::source_location;
+
+  template <Site S, class A>
+  static auto load(const A& a, Where where = Where::current()) noexcept {
+    static_assert(info(S).kind == SiteKind::kLoad, "site is not a load");
+    return Backend::load(a, Policy::order(S), S, where);
+  }
+  template <Site S, class A, class T>
+  static void store(A& a, T v, Where where = Where::current()) noexcept {
+    static_assert(info(S).kind == SiteKind::kStore, "site is not a store");
+    Backend::store(a, v, Policy::order(S), S, where);
+  }
+  template <Site S, class A, class T>
+  static auto exchange(A& a, T v, Where where = Where::current()) noexcept {
+    static_assert(info(S).kind == SiteKind::kReadModifyWrite, "site is not a read-modify-write");
+    return Backend::exchange(a, v, Policy::order(S), S, where);
+  }
+  template <Site S, class A, class T>
+  static auto fetch_add(A& a, T v, Where where = Where::current()) noexcept {
+    static_assert(info(S).kind == SiteKind::kReadModifyWrite, "site is not a read-modify-write");
+    return Backend::fetch_add(a, v, Policy::order(S), S, where);
+  }
+  template <Site S, class A, class T>
+  static auto fetch_sub(A& a, T v, Where where = Where::current()) noexcept {
+    static_assert(info(S).kind == SiteKind::kReadModifyWrite, "site is not a read-modify-write");
+    return Backend::fetch_sub(a, v, Policy::order(S), S, where);
+  }
+  template <Site S>
+  static void fence(Where where = Where::current()) noexcept {
+    static_assert(info(S).kind == SiteKind::kFence, "site is not a fence");
+    Backend::fence(Policy::fence(S), S, where);
+  }
+  // Blocking wait for a value change (frame boundaries only).
+  template <Site S, class A, class T>
+  static void wait_while_equal(const A& a, T old, Where where = Where::current()) noexcept {
+    static_assert(info(S).kind == SiteKind::kLoad, "site is not a load");
+    Backend::wait_while_equal(a, old, Policy::order(S), S, where);
+  }
+  // Plain shared cells: no order, but the backend sees them (Relacy checks them for data races).
+  template <class C>
+  static auto read(const C& c, Where where = Where::current()) noexcept {
+    return Backend::read(c, where);
+  }
+  template <class C, class T>
+  static void write(C& c, T v, Where where = Where::current()) noexcept {
+    Backend::write(c, v, where);
+  }
+};
+
+}  // namespace frontsteal

@@ -1,0 +1,135 @@
+// policies.hpp — memory-order policies: the order of every labelled access site, and each policy's contract.
+//
+// A policy is a type with:
+//   kName, kContract (exactly-once or at-least-once), kDefects (deliberate bugs, for negative controls only),
+//   kNeedsMembarrier, and constexpr-or-runtime functions order(Site) -> Mo and fence(Site) -> Fence.
+// The protocol asks the policy at every access; with the constexpr policies below the answer folds into the
+// instruction, so a policy costs exactly its fences.
+//
+// The handshake these policies differ on (labels from site.hpp):
+//     owner                               thief (holds LockList[b])
+//     O1  ListTransient := 1              T3  End := mid
+//     F1  fence                           F2  fence
+//     O2  e := End                        T4  t := ListTransient
+// This is store buffering (Dekker). Both threads may read the other's old value unless F1 and F2 together
+// forbid it. If O2 reads the old End while T4 reads the old ListTransient, the owner claims an item of the
+// thief's share and the thief does not wait for that claim, so both process it: a duplicate, never a loss.
+//
+//   SeqCst      every site seq_cst (fences included, though with all four handshake accesses seq_cst they
+//               are redundant; models_check/ shows which). Exactly-once.
+//   Paper       the paper's handshake as written: acquire/release, no StoreLoad fence. AT-LEAST-ONCE: on
+//               x86 (store buffer) and under the C++ model the store-buffering outcome above is allowed, so
+//               an item can run twice (never zero times). Paper §4.2.2 assumes sequential consistency.
+//   Fenced      acquire/release plus one seq_cst fence on each side of the handshake (F1, F2). Exactly-once.
+//   Asymmetric  the owner's F1 is only a compiler barrier; the thief's F2 is membarrier(PRIVATE_EXPEDITED),
+//               which runs a full barrier on every CPU running this process. Exactly-once when the kernel
+//               supports it (registration is checked at start, see membarrier.hpp); the owner pays nothing.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "core/memory_order.hpp"
+#include "core/site.hpp"
+
+namespace frontsteal {
+
+enum class Contract : std::uint8_t { kExactlyOnce, kAtLeastOnce };
+
+constexpr std::string_view name(Contract c) noexcept {
+  return c == Contract::kExactlyOnce ? "exactly-once" : "at-least-once";
+}
+
+// Deliberate protocol defects. Only negative controls (negative_controls.hpp) set these, so tests and
+// checkers can prove they are able to fail.
+enum class Defect : std::uint8_t {
+  kNone = 0,
+  kSkipFrontReread = 1 << 0,      // thief keeps its whole share without re-reading Front (drops T4, T5)
+  kOwnerSkipsTransient = 1 << 1,  // owner claims without raising ListTransient (drops O1, O4)
+};
+
+constexpr Defect operator|(Defect a, Defect b) noexcept {
+  return static_cast<Defect>(static_cast<std::uint8_t>(a) | static_cast<std::uint8_t>(b));
+}
+constexpr bool has(Defect set, Defect d) noexcept {
+  return (static_cast<std::uint8_t>(set) & static_cast<std::uint8_t>(d)) != 0;
+}
+
+// The order an access of a given kind gets under plain acquire/release labelling: loads acquire, stores
+// release, read-modify-writes both.
+constexpr Mo acquire_release_order(Site s) noexcept {
+  switch (info(s).kind) {
+    case SiteKind::kLoad: return Mo::kAcquire;
+    case SiteKind::kStore: return Mo::kRelease;
+    case SiteKind::kReadModifyWrite: return Mo::kAcqRel;
+    case SiteKind::kFence: break;
+  }
+  return Mo::kRelaxed;  // unreachable for access sites; fences use fence()
+}
+
+struct SeqCst {
+  static constexpr std::string_view kName = "SeqCst";
+  static constexpr Contract kContract = Contract::kExactlyOnce;
+  static constexpr Defect kDefects = Defect::kNone;
+  static constexpr bool kNeedsMembarrier = false;
+  static constexpr Mo order(Site) noexcept { return Mo::kSeqCst; }
+  static constexpr Fence fence(Site) noexcept { return Fence::kSeqCst; }
+};
+
+struct Paper {
+  static constexpr std::string_view kName = "Paper";
+  static constexpr Contract kContract = Contract::kAtLeastOnce;
+  static constexpr Defect kDefects = Defect::kNone;
+  static constexpr bool kNeedsMembarrier = false;
+  static constexpr Mo order(Site s) noexcept { return acquire_release_order(s); }
+  static constexpr Fence fence(Site) noexcept { return Fence::kNone; }
+};
+
+struct Fenced {
+  static constexpr std::string_view kName = "Fenced";
+  static constexpr Contract kContract = Contract::kExactlyOnce;
+  static constexpr Defect kDefects = Defect::kNone;
+  static constexpr bool kNeedsMembarrier = false;
+  static constexpr Mo order(Site s) noexcept { return acquire_release_order(s); }
+  static constexpr Fence fence(Site s) noexcept {
+    return (s == Site::kOwnerStoreLoadFence || s == Site::kThiefStoreLoadFence) ? Fence::kSeqCst : Fence::kNone;
+  }
+};
+
+struct Asymmetric {
+  static constexpr std::string_view kName = "Asymmetric";
+  static constexpr Contract kContract = Contract::kExactlyOnce;
+  static constexpr Defect kDefects = Defect::kNone;
+  static constexpr bool kNeedsMembarrier = true;
+  static constexpr Mo order(Site s) noexcept { return acquire_release_order(s); }
+  static constexpr Fence fence(Site s) noexcept {
+    if (s == Site::kOwnerStoreLoadFence) return Fence::kAsymmetricLight;
+    if (s == Site::kThiefStoreLoadFence) return Fence::kAsymmetricHeavy;
+    return Fence::kNone;
+  }
+};
+
+// Whether a policy's orders forbid the store-buffering outcome of the handshake, read off its table:
+// both sides order their store before their load, by a seq_cst fence, by seq_cst accesses, or by the
+// asymmetric pair (heavy on the thief side, at least a compiler barrier on the owner side).
+// This is the static half of the story; models_check/ and stress/ check it dynamically.
+template <class Policy>
+constexpr bool forbids_store_buffering() {
+  const Fence f1 = Policy::fence(Site::kOwnerStoreLoadFence);
+  const Fence f2 = Policy::fence(Site::kThiefStoreLoadFence);
+  const bool owner_seq = f1 == Fence::kSeqCst ||
+                         (Policy::order(Site::kOwnerAnnounce) == Mo::kSeqCst &&
+                          Policy::order(Site::kOwnerReadEnd) == Mo::kSeqCst);
+  const bool thief_seq = f2 == Fence::kSeqCst ||
+                         (Policy::order(Site::kThiefShrinkEnd) == Mo::kSeqCst &&
+                          Policy::order(Site::kThiefAwaitTransient) == Mo::kSeqCst);
+  const bool asymmetric = f2 == Fence::kAsymmetricHeavy && f1 != Fence::kNone;
+  return (owner_seq && thief_seq) || asymmetric;
+}
+
+static_assert(forbids_store_buffering<SeqCst>());
+static_assert(!forbids_store_buffering<Paper>());
+static_assert(forbids_store_buffering<Fenced>());
+static_assert(forbids_store_buffering<Asymmetric>());
+
+}  // namespace frontsteal

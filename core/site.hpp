@@ -1,0 +1,102 @@
+// site.hpp — every shared-memory access site of the protocol, named and labelled.
+//
+// A memory-order policy (policies.hpp) assigns an order to each Site; a backend receives the Site with
+// every operation so it can inject chaos there (stress/) or name it in a trace (models_check/). The labels
+// (O1, F1, T3, ...) are the ones used in the opening comment of stealing_protocol.hpp, in mutation-testing
+// output and in failure reports. Adding a site means adding a row to kSiteTable.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+namespace frontsteal {
+
+enum class Site : std::uint8_t {
+  // Owner's claim of one item (paper §4.2.1 lines 1-2 with §4.2.2's ListTransient).
+  kOwnerAnnounce,         // O1  ListTransient[p] := 1
+  kOwnerStoreLoadFence,   // F1  orders O1 before O2 (the owner half of the Dekker handshake)
+  kOwnerReadEnd,          // O2  read the end of ActivityList[p]
+  kOwnerClaimFront,       // O3  Front[p] := f + 1
+  kOwnerRetract,          // O4  ListTransient[p] := 0
+  // Thief's steal from victim b (§4.2.2 lines 651-654).
+  kThiefReadFront,        // T1  first read of Front[b], sizes the share
+  kThiefReadEnd,          // T2  read of End[b] (protected by LockList[b])
+  kThiefShrinkEnd,        // T3  End[b] := mid, the linearization point of a steal
+  kThiefStoreLoadFence,   // F2  orders T3 before T4 (the thief half of the Dekker handshake)
+  kThiefAwaitTransient,   // T4  busy-wait until ListTransient[b] == 0
+  kThiefRereadFront,      // T5  re-read Front[b]: everything below it is the victim's
+  // LockList[b], the non-blocking try-lock that serializes thieves (and a worker installing its own list).
+  kLockProbe,             // L1  cheap look before the exchange
+  kLockAcquire,           // L2  exchange 0 -> 1
+  kLockRelease,           // L3  store 0
+  // A worker installing a new list into its own slot, under its own LockList.
+  kInstallFront,          // I1  Front[p] := 0
+  kInstallEnd,            // I2  End[p] := item count of the new list
+  // Termination detection: the number of workers that hold, or are taking, unfinished work.
+  kActiveJoin,            // A1  a thief about to shrink a non-empty victim list: +1
+  kActiveLeave,           // A2  a worker whose list is exhausted: -1
+  kActivePoll,            // A3  an idle worker looks for 0: the frame's work is done
+  // Frame boundary: persistent workers between frames.
+  kFrameStart,            // E1  caller publishes the next frame number
+  kFrameAwaitStart,       // E2  worker waits for it
+  kFrameArrive,           // E3  worker counts itself done with the frame
+  kFrameResetActive,      // E4  last arriver re-arms the active count for the next frame
+  kFramePublishDone,      // E5  last arriver publishes the frame as done
+  kFrameAwaitDone,        // E6  caller (and workers before the next frame) wait for it
+  kCount
+};
+
+inline constexpr std::size_t kSiteCount = static_cast<std::size_t>(Site::kCount);
+
+enum class SiteKind : std::uint8_t { kLoad, kStore, kReadModifyWrite, kFence };
+
+struct SiteInfo {
+  Site site;
+  std::string_view label;        // short label used in comments and reports, e.g. "O1"
+  std::string_view name;         // dotted name, e.g. "owner.announce"
+  SiteKind kind;
+  std::string_view what;         // one line: what the access does
+};
+
+inline constexpr std::array<SiteInfo, kSiteCount> kSiteTable{{
+    {Site::kOwnerAnnounce, "O1", "owner.announce", SiteKind::kStore, "ListTransient[p] := 1 before reading the list end"},
+    {Site::kOwnerStoreLoadFence, "F1", "owner.storeload_fence", SiteKind::kFence, "StoreLoad between O1 and O2"},
+    {Site::kOwnerReadEnd, "O2", "owner.read_end", SiteKind::kLoad, "read End[p] to decide whether Front is claimable"},
+    {Site::kOwnerClaimFront, "O3", "owner.claim_front", SiteKind::kStore, "Front[p] := f + 1, claiming item f"},
+    {Site::kOwnerRetract, "O4", "owner.retract", SiteKind::kStore, "ListTransient[p] := 0 after updating Front"},
+    {Site::kThiefReadFront, "T1", "thief.read_front", SiteKind::kLoad, "first read of Front[b] to size the share"},
+    {Site::kThiefReadEnd, "T2", "thief.read_end", SiteKind::kLoad, "read End[b] under LockList[b]"},
+    {Site::kThiefShrinkEnd, "T3", "thief.shrink_end", SiteKind::kStore, "End[b] := mid, taking the second half"},
+    {Site::kThiefStoreLoadFence, "F2", "thief.storeload_fence", SiteKind::kFence, "StoreLoad between T3 and T4"},
+    {Site::kThiefAwaitTransient, "T4", "thief.await_transient", SiteKind::kLoad, "spin until ListTransient[b] == 0"},
+    {Site::kThiefRereadFront, "T5", "thief.reread_front", SiteKind::kLoad, "re-read Front[b]; skip the items below it"},
+    {Site::kLockProbe, "L1", "lock.probe", SiteKind::kLoad, "look at LockList before trying to take it"},
+    {Site::kLockAcquire, "L2", "lock.acquire", SiteKind::kReadModifyWrite, "exchange LockList 0 -> 1"},
+    {Site::kLockRelease, "L3", "lock.release", SiteKind::kStore, "LockList := 0"},
+    {Site::kInstallFront, "I1", "install.front", SiteKind::kStore, "Front[p] := 0 for a newly installed list"},
+    {Site::kInstallEnd, "I2", "install.end", SiteKind::kStore, "End[p] := size of the newly installed list"},
+    {Site::kActiveJoin, "A1", "active.join", SiteKind::kReadModifyWrite, "active += 1 before taking work"},
+    {Site::kActiveLeave, "A2", "active.leave", SiteKind::kReadModifyWrite, "active -= 1 when a list is exhausted"},
+    {Site::kActivePoll, "A3", "active.poll", SiteKind::kLoad, "idle worker reads active; 0 ends the frame"},
+    {Site::kFrameStart, "E1", "frame.start", SiteKind::kStore, "caller publishes frame k"},
+    {Site::kFrameAwaitStart, "E2", "frame.await_start", SiteKind::kLoad, "worker waits for frame k"},
+    {Site::kFrameArrive, "E3", "frame.arrive", SiteKind::kReadModifyWrite, "worker counts itself done"},
+    {Site::kFrameResetActive, "E4", "frame.reset_active", SiteKind::kStore, "last arriver re-arms active := P"},
+    {Site::kFramePublishDone, "E5", "frame.publish_done", SiteKind::kStore, "last arriver publishes frame k done"},
+    {Site::kFrameAwaitDone, "E6", "frame.await_done", SiteKind::kLoad, "wait until frame k is done"},
+}};
+
+constexpr const SiteInfo& info(Site s) noexcept { return kSiteTable[static_cast<std::size_t>(s)]; }
+
+// The table is indexed by Site: a row out of place is a compile error, not a mislabelled report.
+constexpr bool site_table_is_ordered() {
+  for (std::size_t i = 0; i < kSiteCount; ++i) {
+    if (static_cast<std::size_t>(kSiteTable[i].site) != i) return false;
+  }
+  return true;
+}
+static_assert(site_table_is_ordered(), "kSiteTable rows must follow the order of enum Site");
+
+}  // namespace frontsteal

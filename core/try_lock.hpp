@@ -1,0 +1,43 @@
+// try_lock.hpp — LockList[p]: the non-blocking try-lock that serializes thieves of one victim.
+//
+// Paper §4.2.1 line 62: "Non-blocking lock ensures that if p_i cannot acquire LockList[p_b], there must exist
+// another idle processor p_j currently sharing ActivityList[p_b]". A thief never waits for it: a failed
+// try_lock moves the thief to its next victim. The owner of the list takes it only while idle, to install a
+// new list (lock_spinning), which is why no owner *claim* ever waits on it.
+//
+// Orders: L2 (acquire) pairs with L3 (release) of the previous holder, so whatever a holder wrote to the
+// slot's End and list body is visible to the next holder. L1 is only a hint that saves an exchange.
+#pragma once
+
+#include <cstdint>
+
+#include "core/labelled_access.hpp"
+
+namespace frontsteal {
+
+template <class Backend, class Policy>
+class TryLock {
+ public:
+  TryLock() = default;
+  TryLock(const TryLock&) = delete;
+  TryLock& operator=(const TryLock&) = delete;
+
+  [[nodiscard]] bool try_lock() noexcept {
+    if (A::template load<Site::kLockProbe>(held_) != 0u) return false;            // L1
+    return A::template exchange<Site::kLockAcquire>(held_, std::uint32_t{1}) == 0u;  // L2
+  }
+
+  // Only for the owner of the list, when idle: the holders are thieves that finish in a bounded number of
+  // their own steps (their only wait is on this idle owner's ListTransient, which is 0).
+  void lock_spinning() noexcept {
+    for (std::uint32_t spins = 0; !try_lock(); ++spins) Backend::spin_pause(Site::kLockProbe, spins);
+  }
+
+  void unlock() noexcept { A::template store<Site::kLockRelease>(held_, std::uint32_t{0}); }  // L3
+
+ private:
+  using A = Access<Backend, Policy>;
+  typename Backend::template Atomic<std::uint32_t> held_{0u};
+};
+
+}  // namespace frontsteal
