@@ -10,11 +10,15 @@
 //   worker w     runs await_frame_start(w, k) then run_frame(w, k, f); uses only workers_[w] privately.
 //   caller       releases frame k (E1) and waits for it to be done (E6); between frames it may reseed.
 //   last arriver the worker whose arrival completes frame k: rebuilds the next allocation where the policy
-//                is at-least-once (duplicates removed), re-arms termination (E4), publishes done (E5).
+//                is at-least-once (duplicates removed), installs every worker's list for frame k+1 (so all
+//                lists are stealable from the first instant of the frame), re-arms termination (E4),
+//                publishes done (E5).
 //
 // OWNERSHIP
 //   Worker (owner, thief, log, next_list, stats, failure)   its worker's thread during a frame; the caller
-//                                                            and the last arriver between frames
+//                                                            (reseed) and the last arriver between frames
+//   every ActivitySlot's list                                installed between frames by the last arriver or
+//                                                            by reseed, while every worker waits (F1)
 //   started_   caller writes (E1)            workers read (E2)
 //   arrivals_  workers RMW (E3), monotonic: frame k is complete when it reaches k * P
 //   done_      last arriver writes (E5)     caller and workers read (E6)
@@ -77,6 +81,7 @@ class StealingWorkers {
       workers_.push_back(std::make_unique<Worker>(*slots_.back(), active_, max_entries));
       Worker& me = *workers_.back();
       me.next_list = std::move(initial[w]);
+      me.owner.install(me.next_list);
       me.log.reserve(max_entries);
       // Paper §4.2.1: "each processor maintains a list of other processors in a random order".
       for (WorkerId v = 0; v < workers; ++v) {
@@ -107,6 +112,7 @@ class StealingWorkers {
       RangeList merged;
       for (const IdRange& r : allocation[w]) append_merging(merged, r);
       workers_[w]->next_list = std::move(merged);
+      workers_[w]->owner.install(workers_[w]->next_list);
     }
   }
   // Each worker's list for the next frame (between frames).
@@ -139,7 +145,6 @@ class StealingWorkers {
     me.stats = WorkerFrameStats{};
     me.failure.reset();
     const auto start = Clock::now();
-    me.owner.install(me.next_list);
     me.log.clear();
     for (;;) {
       drain(me, w, process);
@@ -235,6 +240,9 @@ class StealingWorkers {
     if (before + 1 != std::uint64_t{frame} * worker_count_) return;
     // Last arriver: everyone else is done with frame `frame` and waits for done_.
     if constexpr (needs_dedupe()) remove_duplicates();
+    // Install every list now rather than when each worker starts the next frame: a worker whose thread is
+    // slow to wake (or preempted) then has its list stolen instead of holding the frame back.
+    for (auto& w : workers_) w->owner.install(w->next_list);
     active_.rearm(worker_count_);                           // E4
     A::template store<Site::kFramePublishDone>(done_, frame);  // E5
     Backend::notify_all(done_);

@@ -16,11 +16,13 @@
 //
 // OWNERSHIP of ActivitySlot (see activity_list.hpp for the layout)
 //   field        writer                                       readers
-//   front        owner: O3 per claim, I1 at install           thieves under LockList: T1, T5
+//   front        owner: O3 per claim, I1 at install (*)       thieves under LockList: T1, T5
 //   transient    owner: O1, O4                                thieves under LockList: T4
 //   end          thieves under LockList: T3;                  owner: O2 (no lock); thieves under LockList: T2
 //                owner under its own LockList: I2
-//   entries      owner under its own LockList, at install     owner; thieves under LockList
+//   entries      owner under its own LockList, at install (*) owner; thieves under LockList
+//   (*) between frames, the thread that prepares the next frame installs every list while all workers wait
+//       (frame_loop.hpp, F1); its writes reach the owner through the frame boundary's release/acquire.
 //
 // INVARIANTS
 //   I1  Thieves of one victim are serialized by its LockList; the owner of a list takes that lock only when
@@ -128,8 +130,9 @@ class Owner {
     return entry_.ids.begin + (f - entry_.flat_begin);
   }
 
-  // Replaces the (exhausted) list with `list`, under our own LockList so no thief reads a half-written body.
-  // Called between frames and after a successful steal; never while items of the old list are unclaimed.
+  // Replaces the (exhausted) list with `list`, under the slot's LockList so no thief reads a half-written body.
+  // Called by the owner's thread after a successful steal, and between frames by whichever thread prepares
+  // the next frame while every worker waits; never while items of the old list are unclaimed.
   void install(std::span<const IdRange> list) noexcept {
     slot_.lock.lock_spinning();
     std::uint32_t flat = 0;
