@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <ostream>
 
 #include "core/id_range.hpp"
 #include "core/labelled_access.hpp"
@@ -38,6 +39,10 @@ struct SegmentEntry {
   std::uint32_t flat_begin = 0;
   constexpr std::uint32_t flat_end() const noexcept { return flat_begin + ids.size(); }
 };
+
+inline std::ostream& operator<<(std::ostream& out, const SegmentEntry& e) {
+  return out << e.ids << '@' << e.flat_begin;
+}
 
 template <class Backend, class Policy>
 struct ActivitySlot {

@@ -111,14 +111,27 @@ class StealingWorkers {
     for (WorkerId w = 0; w < worker_count_; ++w) {
       RangeList merged;
       for (const IdRange& r : allocation[w]) append_merging(merged, r);
+      A::write(workers_[w]->handover, std::uint32_t{0});
       workers_[w]->next_list = std::move(merged);
       workers_[w]->owner.install(workers_[w]->next_list);
     }
   }
+  // Replaces worker w's victim order (harnesses use it to force a particular chain of steals). Between frames.
+  void set_victims(WorkerId w, std::vector<WorkerId> victims) {
+    for (WorkerId v : victims) {
+      if (v == w || v >= worker_count_) throw std::invalid_argument("frontsteal: bad victim " + std::to_string(v));
+    }
+    A::write(workers_[w]->handover, std::uint32_t{0});
+    workers_[w]->victims = std::move(victims);
+    workers_[w]->victim_cursor = 0;
+  }
   // Each worker's list for the next frame (between frames).
   std::vector<RangeList> allocation() const {
     std::vector<RangeList> out;
-    for (const auto& w : workers_) out.push_back(w->next_list);
+    for (const auto& w : workers_) {
+      (void)A::read(w->handover);
+      out.push_back(w->next_list);
+    }
     return out;
   }
 
@@ -142,6 +155,7 @@ class StealingWorkers {
   template <class Process>
   void run_frame(WorkerId w, std::uint32_t frame, Process& process) {
     Worker& me = *workers_[w];
+    A::write(me.handover, frame);  // the worker takes its fields over (ordered by E2/E6)
     me.stats = WorkerFrameStats{};
     me.failure.reset();
     const auto start = Clock::now();
@@ -153,12 +167,20 @@ class StealingWorkers {
     }
     me.next_list = normalized(me.log);  // sorted, adjacent ranges merged: lists do not fragment without bound
     me.stats.idle_ns = elapsed_ns(start) - me.stats.busy_ns;
+    A::write(me.handover, frame);  // ... and hands them back (ordered by E3, then E5)
     arrive(frame);
   }
 
   // ---- observation and handles for tests --------------------------------------------------------------
-  const WorkerFrameStats& stats(WorkerId w) const noexcept { return workers_[w]->stats; }
-  const std::optional<ItemFailure>& failure(WorkerId w) const noexcept { return workers_[w]->failure; }
+  // Between frames only (the caller after await_frame_done).
+  const WorkerFrameStats& stats(WorkerId w) const noexcept {
+    (void)A::read(workers_[w]->handover);
+    return workers_[w]->stats;
+  }
+  const std::optional<ItemFailure>& failure(WorkerId w) const noexcept {
+    (void)A::read(workers_[w]->handover);
+    return workers_[w]->failure;
+  }
   OwnerHandle& owner(WorkerId w) noexcept { return workers_[w]->owner; }
   ThiefHandle& thief(WorkerId w) noexcept { return workers_[w]->thief; }
   Slot& slot(WorkerId w) noexcept { return *slots_[w]; }
@@ -171,6 +193,11 @@ class StealingWorkers {
   struct alignas(kCacheLine) Worker {
     Worker(Slot& slot, ActiveWorkers<Backend, Policy>& active, std::uint32_t max_entries)
         : owner(slot), thief(active, max_entries) {}
+    // Stands for every plain field below when it changes hands between threads (the worker during a frame;
+    // the caller and the last arriver between frames). Each such hand-over writes or reads this cell, so a
+    // checking backend (Relacy) sees a race on it exactly when the hand-over of those fields is not ordered.
+    // In production it is one plain store or load per hand-over.
+    typename Backend::template Cell<std::uint32_t> handover{};
     OwnerHandle owner;
     ThiefHandle thief;
     RangeList log;        // ids claimed this frame, in claim order
@@ -181,8 +208,8 @@ class StealingWorkers {
     std::optional<ItemFailure> failure;
   };
 
-  static constexpr bool needs_dedupe() noexcept {
-    return Policy::kContract == Contract::kAtLeastOnce || Policy::kDefects != Defect::kNone;
+  static bool needs_dedupe() noexcept {
+    return Policy::kContract == Contract::kAtLeastOnce || Policy::defects() != Defect::kNone;
   }
 
   static std::int64_t elapsed_ns(Clock::time_point since) {
@@ -239,7 +266,8 @@ class StealingWorkers {
     const std::uint64_t before = A::template fetch_add<Site::kFrameArrive>(arrivals_, std::uint64_t{1});  // E3
     if (before + 1 != std::uint64_t{frame} * worker_count_) return;
     // Last arriver: everyone else is done with frame `frame` and waits for done_.
-    if constexpr (needs_dedupe()) remove_duplicates();
+    for (auto& w : workers_) A::write(w->handover, frame);  // the last arriver takes every worker's fields
+    if (needs_dedupe()) remove_duplicates();
     // Install every list now rather than when each worker starts the next frame: a worker whose thread is
     // slow to wake (or preempted) then has its list stolen instead of holding the frame back.
     for (auto& w : workers_) w->owner.install(w->next_list);
@@ -249,7 +277,8 @@ class StealingWorkers {
   }
 
   // At-least-once policies can leave an id in two workers' logs; keep it with the lower worker id so the next
-  // frame's lists stay a partition (F2). A missing id is a lost item: a protocol bug, never input.
+  // frame's lists stay a partition (F2). A missing id is a lost item: a protocol bug, never input; the
+  // backend reports it (std: abort with a message; Relacy: a failed test with its history).
   void remove_duplicates() {
     std::fill(seen_.begin(), seen_.end(), std::uint8_t{0});
     for (auto& w : workers_) {
@@ -264,7 +293,9 @@ class StealingWorkers {
       }
       w->next_list = std::move(kept);
     }
-    for (ItemId i = 0; i < item_count_; ++i) FRONTSTEAL_CHECK_EQ(int{seen_[i]}, 1);
+    for (ItemId i = 0; i < item_count_; ++i) {
+      Backend::invariant(seen_[i] == 1, "frame end: an item is in no worker's log (lost)");
+    }
   }
 
   template <class Atom>

@@ -14,14 +14,14 @@ namespace frontsteal {
 // item the victim claimed just before the steal runs twice.
 struct BrokenSkipsReread : Fenced {
   static constexpr std::string_view kName = "Broken:SkipsReread";
-  static constexpr Defect kDefects = Defect::kSkipFrontReread;
+  static constexpr Defect defects() noexcept { return Defect::kSkipFrontReread; }
 };
 
 // The owner claims without raising ListTransient (drops O1, O4): a thief re-reads Front while a claim is in
 // flight, and misses it.
 struct BrokenNoTransient : Fenced {
   static constexpr std::string_view kName = "Broken:NoTransient";
-  static constexpr Defect kDefects = Defect::kOwnerSkipsTransient;
+  static constexpr Defect defects() noexcept { return Defect::kOwnerSkipsTransient; }
 };
 
 }  // namespace frontsteal

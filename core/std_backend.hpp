@@ -10,9 +10,11 @@
 #include <atomic>
 #include <cstdint>
 #include <source_location>
+#include <string>
 #include <string_view>
 #include <thread>
 
+#include "core/check.hpp"
 #include "core/membarrier.hpp"
 #include "core/memory_order.hpp"
 #include "core/site.hpp"
@@ -90,6 +92,11 @@ struct StdBackend {
   template <class T>
   static void write(Cell<T>& c, T v, Where) noexcept {
     c.value = v;
+  }
+
+  // A protocol invariant (programmer error, never bad input): abort with the message and location.
+  static void invariant(bool holds, const char* what, Where where = Where::current()) noexcept {
+    if (!holds) detail::check_failed(what, std::string(), where.file_name(), static_cast<int>(where.line()));
   }
 
   // One iteration of a busy-wait (the thief on ListTransient, an idle worker looking for work, an owner

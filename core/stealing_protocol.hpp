@@ -108,7 +108,7 @@ class Owner {
 
   // The steps of try_claim, public so tests can interleave them with a thief's steps one at a time.
   void announce() noexcept {
-    if constexpr (!has(Policy::kDefects, Defect::kOwnerSkipsTransient)) {
+    if (!has(Policy::defects(), Defect::kOwnerSkipsTransient)) {
       A::template store<Site::kOwnerAnnounce>(slot_.transient, std::uint32_t{1});  // O1
     }
   }
@@ -139,7 +139,7 @@ class Owner {
     std::uint32_t n = 0;
     for (const IdRange& r : list) {
       if (r.empty()) continue;
-      FRONTSTEAL_CHECK_LT(n, slot_.capacity);
+      Backend::invariant(n < slot_.capacity, "install: list has more ranges than the slot holds");
       A::write(slot_.entries[n++], SegmentEntry{r, flat});
       flat += r.size();
     }
@@ -171,7 +171,7 @@ class Owner {
   using A = Access<Backend, Policy>;
 
   void retract() noexcept {
-    if constexpr (!has(Policy::kDefects, Defect::kOwnerSkipsTransient)) {
+    if (!has(Policy::defects(), Defect::kOwnerSkipsTransient)) {
       A::template store<Site::kOwnerRetract>(slot_.transient, std::uint32_t{0});  // O4
     }
   }
@@ -254,11 +254,11 @@ class Thief {
 
   // One poll of the victim's ListTransient: true when no claim is in flight.
   [[nodiscard]] bool victim_quiescent(Slot& victim) noexcept {
-    if constexpr (has(Policy::kDefects, Defect::kSkipFrontReread)) return true;
+    if (has(Policy::defects(), Defect::kSkipFrontReread)) return true;
     return A::template load<Site::kThiefAwaitTransient>(victim.transient) == 0u;  // T4
   }
   [[nodiscard]] std::uint32_t reread_front(Slot& victim) noexcept {
-    if constexpr (has(Policy::kDefects, Defect::kSkipFrontReread)) return mid_;
+    if (has(Policy::defects(), Defect::kSkipFrontReread)) return mid_;
     return A::template load<Site::kThiefRereadFront>(victim.front);  // T5
   }
 

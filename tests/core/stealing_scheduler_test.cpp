@@ -98,7 +98,7 @@ RunSummary run_frames(WorkerId workers, ItemId items, std::uint32_t frames, std:
     sum.steals += stats.totals().steals_succeeded;
     sum.skipped += stats.totals().items_skipped;
     if (audit.lost > 0 || (Policy::kContract == fs::Contract::kExactlyOnce && audit.duplicated > 0 &&
-                           Policy::kDefects == fs::Defect::kNone)) {
+                           Policy::defects() == fs::Defect::kNone)) {
       FAIL_CHECK("frame " << f << " of " << Policy::kName << " with " << workers << " workers: " << audit);
       break;
     }

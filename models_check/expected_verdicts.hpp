@@ -1,0 +1,33 @@
+// expected_verdicts.hpp — what each policy must do in each scenario, as data.
+//
+// A cell is the set of verdicts that count as expected. Exactly-once policies must pass every scenario in the
+// exactly-once check. Paper must be *caught* (a duplicate) wherever an owner can be claiming while a thief
+// steals from it — every scenario with at least one item — and must pass the at-least-once check everywhere.
+// The negative controls are expected to be caught exactly where Paper is: their defects open the same
+// window without any help from weak memory.
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+#include "models_check/scenarios.hpp"
+#include "models_check/search.hpp"
+#include "models_check/table_policy.hpp"
+
+namespace frontsteal::model {
+
+struct Expectation {
+  std::vector<Verdict> accepted;
+  std::string_view why;
+};
+
+inline Expectation expected_verdict(const PolicyTable& policy, const ScenarioSpec& scenario, CheckMode mode) {
+  const bool faulty = policy.contract == Contract::kAtLeastOnce || policy.defects != Defect::kNone;
+  if (mode == CheckMode::kAtLeastOnce) return {{Verdict::kPass}, "every policy is at least at-least-once"};
+  if (!faulty) return {{Verdict::kPass}, "exactly-once contract"};
+  if (scenario.items == 0) return {{Verdict::kPass}, "no item, nothing to duplicate"};
+  if (policy.defects != Defect::kNone) return {{Verdict::kDuplicate}, "negative control: the defect must be caught"};
+  return {{Verdict::kDuplicate}, "at-least-once: store buffering at the handshake duplicates an item"};
+}
+
+}  // namespace frontsteal::model

@@ -1,0 +1,522 @@
+// frontsteal-stress — the protocol on real threads for many frames: exactly-once audits, outcome histograms
+// (in the manner of jcstress), chaos injection, fault injection and negative controls.
+//
+// Built twice: in the tsan preset (ThreadSanitizer; the ctest `stress` label) and in release (no sanitizer;
+// `--rates` measures how often the store->load reordering of x86 actually duplicates items).
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include "core/execution_counter.hpp"
+#include "models_check/table_policy.hpp"
+#include "stress/chaos_backend.hpp"
+#include "stress/handshake_race.hpp"
+#include "stress/stress_targets.hpp"
+
+namespace fs = frontsteal;
+using namespace frontsteal;
+using namespace frontsteal::stress;
+
+namespace {
+
+constexpr std::string_view kUsage = R"(usage: frontsteal-stress [options]
+
+Runs the stealing protocol on real threads for many frames and audits every item of every frame (lost = 0
+always; duplicates = 0 for exactly-once policies, counted for at-least-once ones). Prints a histogram of
+outcomes per target and thread count, and writes markdown and JSON. Exits 1 on a lost item, a duplicate under
+an exactly-once policy, a negative control that was not caught, or a failed fault scenario.
+
+modes:
+  (default)          the bounded suite: every target x P in {2, 4, 8}, then the fault scenarios
+  --rates            no chaos, no sanitizer expected (run it from the release build): the handshake raced
+                     head-on (--rounds rounds of --race-items items: duplicates per million rounds) and the
+                     frame-level duplicate rate per million items, for Paper, the exactly-once policies, and
+                     every one-step weakening of Fenced and Minimal
+
+options:
+  --seconds S        time per case (default 3; the suite stays within a few minutes under TSan)
+  --frames F         frames per case instead of a time bound (the slow tier uses 1e6 in total)
+  --items N          items per frame (default 256)
+  --chaos R          chaos injections per million labelled accesses (default 2000; 0 disables)
+  --targets LIST     comma-separated target names (see --list), or all                 (default all)
+  --threads LIST     comma-separated thread counts                                     (default 2,4,8)
+  --seed S           seed of costs and chaos                                           (default 1)
+  --out DIR          results directory                                       (default out/stress)
+  --rounds R         handshake-race rounds per policy in --rates                (default 1000000)
+  --race-items K     items per handshake-race round                             (default 2)
+  --race-work W      owner's multiply-adds after each claimed item in a race round (default 50)
+  --list             list the targets and exit
+  --quiet            no progress lines
+  --help             this text
+)";
+
+struct Options {
+  double seconds = 3;
+  std::uint64_t frames = 0;
+  ItemId items = 256;
+  std::uint32_t chaos = 2000;
+  std::vector<std::string> targets;
+  std::vector<WorkerId> threads{2, 4, 8};
+  std::uint64_t seed = 1;
+  std::string out = "out/stress";
+  bool rates = false;
+  std::uint64_t rounds = 1000000;
+  ItemId race_items = 2;
+  std::uint32_t race_work = 50;
+  bool quiet = false;
+};
+
+[[noreturn]] void usage_error(const std::string& m) {
+  std::cerr << "frontsteal-stress: " << m << "\n(run frontsteal-stress --help for the options)\n";
+  std::exit(2);
+}
+
+template <class T>
+T parse_number(std::string_view flag, std::string_view text) {
+  T v{};
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc{} || end != text.data() + text.size()) {
+    usage_error(std::string(flag) + " expects a number, got '" + std::string(text) + "'");
+  }
+  return v;
+}
+
+std::vector<std::string> split_list(std::string_view s) {
+  std::vector<std::string> out;
+  while (!s.empty()) {
+    const auto comma = s.find(',');
+    out.emplace_back(s.substr(0, comma));
+    if (comma == std::string_view::npos) break;
+    s.remove_prefix(comma + 1);
+  }
+  return out;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    auto value = [&]() -> std::string_view {
+      if (i + 1 >= argc) usage_error(std::string(a) + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage;
+      std::exit(0);
+    } else if (a == "--list") {
+      for (const auto& t : targets()) {
+        std::cout << t.name << "  (" << name(t.contract) << (t.negative_control ? ", negative control" : "") << ")\n";
+      }
+      std::exit(0);
+    } else if (a == "--rates") {
+      o.rates = true;
+    } else if (a == "--rounds") {
+      o.rounds = parse_number<std::uint64_t>(a, value());
+    } else if (a == "--race-items") {
+      o.race_items = parse_number<ItemId>(a, value());
+      if (o.race_items == 0) usage_error("--race-items must be at least 1");
+    } else if (a == "--race-work") {
+      o.race_work = parse_number<std::uint32_t>(a, value());
+    } else if (a == "--seconds") {
+      o.seconds = parse_number<double>(a, value());
+      if (!(o.seconds > 0)) usage_error("--seconds must be positive");
+    } else if (a == "--frames") {
+      o.frames = parse_number<std::uint64_t>(a, value());
+    } else if (a == "--items") {
+      o.items = parse_number<ItemId>(a, value());
+    } else if (a == "--chaos") {
+      o.chaos = parse_number<std::uint32_t>(a, value());
+      if (o.chaos > 1000000) usage_error("--chaos is per million, at most 1000000");
+    } else if (a == "--targets") {
+      o.targets = split_list(value());
+    } else if (a == "--threads") {
+      o.threads.clear();
+      for (const auto& t : split_list(value())) {
+        const auto p = parse_number<WorkerId>("--threads", t);
+        if (p == 0 || p > 256) usage_error("--threads entries must be between 1 and 256");
+        o.threads.push_back(p);
+      }
+    } else if (a == "--seed") {
+      o.seed = parse_number<std::uint64_t>(a, value());
+    } else if (a == "--out") {
+      o.out = value();
+    } else if (a == "--quiet") {
+      o.quiet = true;
+    } else {
+      usage_error("unknown option '" + std::string(a) + "'");
+    }
+  }
+  const auto all = targets();
+  for (const auto& t : o.targets) {
+    if (t != "all" && std::none_of(all.begin(), all.end(), [&](const TargetInfo& x) { return x.name == t; })) {
+      usage_error("unknown target '" + t + "' (see --list)");
+    }
+  }
+  return o;
+}
+
+void spin_work(std::uint32_t iterations) {
+  std::uint32_t x = iterations;
+  for (std::uint32_t i = 0; i < iterations; ++i) {
+    x = x * 1664525u + 1013904223u;
+    asm volatile("" : "+r"(x));
+  }
+}
+
+// Random, skewed costs that change every frame: a hot window (1/8 of the items, 20x) at a random place,
+// and per-item jitter of 1-8 units.
+class CostModel {
+ public:
+  CostModel(ItemId items, std::uint64_t seed) : costs_(items), rng_(seed) {}
+  void next_frame() {
+    if (costs_.empty()) return;
+    const ItemId hot = static_cast<ItemId>(rng_() % costs_.size());
+    for (ItemId i = 0; i < costs_.size(); ++i) {
+      const bool is_hot = (i - hot) % costs_.size() < costs_.size() / 8 + 1;
+      costs_[i] = static_cast<std::uint32_t>((1 + rng_() % 8) * (is_hot ? 20 : 1) * 8);
+    }
+  }
+  std::uint32_t cost(ItemId i) const { return costs_[i]; }
+
+ private:
+  std::vector<std::uint32_t> costs_;
+  std::mt19937_64 rng_;
+};
+
+struct CaseResult {
+  std::string target;
+  std::string contract;
+  bool negative_control = false;
+  WorkerId threads = 0;
+  ItemId items = 0;
+  std::uint64_t frames = 0;
+  std::uint64_t frames_dup0 = 0, frames_dup1 = 0, frames_dup2plus = 0;
+  std::uint64_t lost = 0, duplicated = 0;
+  std::uint64_t steals = 0, skipped = 0;
+  std::uint64_t chaos = 0;
+  double seconds = 0;
+  bool passed = true;
+  std::string verdict;
+  double duplicates_per_million_items() const {
+    return frames * items == 0 ? 0.0 : 1e6 * static_cast<double>(duplicated) / (static_cast<double>(frames) * items);
+  }
+};
+
+CaseResult run_case(const TargetInfo& t, WorkerId p, const Options& o, std::uint32_t cost_scale) {
+  CaseResult r;
+  r.target = t.name;
+  r.contract = std::string(name(t.contract));
+  r.negative_control = t.negative_control;
+  r.threads = p;
+  r.items = o.items;
+  auto target = t.make(p, o.items, o.seed + p);
+  ExecutionCounter runs(o.items);
+  CostModel costs(o.items, o.seed * 7919 + p);
+  const std::uint64_t chaos_before = chaos_injections().load();
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  auto last_report = start;
+  for (;;) {
+    if (o.frames ? r.frames >= o.frames : elapsed() >= o.seconds) break;
+    costs.next_frame();
+    const auto& st = target->run_frame([&](ItemId id, WorkerId) {
+      runs.record(id);
+      spin_work(costs.cost(id) * cost_scale);
+    });
+    const ExecutionAudit a = runs.audit_and_reset();
+    ++r.frames;
+    r.lost += a.lost;
+    r.duplicated += a.duplicated;
+    (a.duplicated == 0 ? r.frames_dup0 : a.duplicated == 1 ? r.frames_dup1 : r.frames_dup2plus)++;
+    r.steals += st.totals().steals_succeeded;
+    r.skipped += st.totals().items_skipped;
+    if (!o.quiet && std::chrono::steady_clock::now() - last_report > std::chrono::seconds(5)) {
+      last_report = std::chrono::steady_clock::now();
+      std::fprintf(stderr, "    ... %s P=%u: %llu frames\n", t.name.c_str(), p, static_cast<unsigned long long>(r.frames));
+    }
+  }
+  r.seconds = elapsed();
+  r.chaos = chaos_injections().load() - chaos_before;
+  if (r.lost > 0) {
+    r.passed = false;
+    r.verdict = "FAIL: lost items";
+  } else if (t.negative_control) {
+    r.passed = r.duplicated > 0;
+    r.verdict = r.passed ? "caught (negative control)" : "FAIL: negative control not caught";
+  } else if (t.contract == Contract::kExactlyOnce && r.duplicated > 0) {
+    r.passed = false;
+    r.verdict = "FAIL: duplicates under an exactly-once policy";
+  } else {
+    r.verdict = t.contract == Contract::kExactlyOnce ? "exactly-once held" : "at-least-once held";
+  }
+  return r;
+}
+
+struct RaceRow {
+  std::string policy;
+  HandshakeRaceResult result;
+};
+
+struct FaultResult {
+  std::string name;
+  bool passed = false;
+  std::string detail;
+};
+
+// (a) A worker stalls mid-frame while holding most of the work: the others finish the frame by stealing.
+FaultResult fault_stall(const Options& o) {
+  const WorkerId p = 3;
+  const ItemId n = 3000;
+  StealingScheduler<Fenced, ChaosBackend> s({.workers = p, .items = n, .seed = o.seed});
+  s.reseed({{{0, 2700}}, {{2700, 2850}}, {{2850, 3000}}});  // worker 0 holds 90%
+  ExecutionCounter runs(n);
+  const auto stall = std::chrono::milliseconds(40);
+  const auto& st = s.run_frame([&](ItemId id, WorkerId) {
+    runs.record(id);
+    if (id == 0) std::this_thread::sleep_for(stall);  // worker 0's first item: it stalls holding 2699 more
+    spin_work(200);
+  });
+  const auto a = runs.audit_and_reset();
+  const std::uint64_t by_others = st.workers[1].items_processed + st.workers[2].items_processed;
+  std::ostringstream d;
+  d << "frame " << st.wall_ns / 1e6 << " ms with a " << stall.count() << " ms stall; worker 0 ran "
+    << st.workers[0].items_processed << " items, the others " << by_others << "; " << a;
+  return {"stall: a worker stalls holding 90% of the items", a.exactly_once() && by_others > 2000, d.str()};
+}
+
+// (b) An item throws: the frame ends, the caller gets the item id, the next frame loses nothing.
+FaultResult fault_throw(const Options& o) {
+  const ItemId n = 500;
+  StealingScheduler<Fenced, ChaosBackend> s({.workers = 3, .items = n, .seed = o.seed});
+  ExecutionCounter runs(n);
+  std::ostringstream d;
+  bool ok = false;
+  try {
+    s.run_frame([&](ItemId id, WorkerId) {
+      runs.record(id);
+      if (id == 317) throw std::runtime_error("injected fault");
+    });
+    d << "no ItemError reached the caller";
+  } catch (const ItemError& e) {
+    const auto first = runs.audit_and_reset();
+    s.run_frame([&](ItemId id, WorkerId) { runs.record(id); });
+    const auto second = runs.audit_and_reset();
+    ok = e.item() == 317 && first.exactly_once() && second.exactly_once();
+    d << "caller got: \"" << e.what() << "\"; that frame: " << first << "; next frame: " << second;
+  }
+  return {"throw: an item function throws", ok, d.str()};
+}
+
+// (c) P = 1, and P larger than the item count.
+FaultResult fault_edges(const Options& o) {
+  std::ostringstream d;
+  bool ok = true;
+  for (auto [p, n] : {std::pair<WorkerId, ItemId>{1, 200}, {8, 3}, {4, 0}}) {
+    StealingScheduler<Fenced, ChaosBackend> s({.workers = p, .items = n, .seed = o.seed});
+    ExecutionCounter runs(n);
+    std::uint64_t bad = 0;
+    for (int f = 0; f < 300; ++f) {
+      s.run_frame([&](ItemId id, WorkerId) { runs.record(id); });
+      bad += runs.audit_and_reset().exactly_once() ? 0 : 1;
+    }
+    d << "P=" << p << " N=" << n << ": " << bad << " bad frames of 300; ";
+    ok = ok && bad == 0;
+  }
+  return {"edges: P = 1, P > N, N = 0", ok, d.str()};
+}
+
+std::string fmt(double v, int digits = 2) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*f", digits, v);
+  return b;
+}
+
+void write_results(const Options& o, const std::vector<CaseResult>& cases, const std::vector<FaultResult>& faults,
+                   const std::vector<RaceRow>& races, bool all_ok, double seconds) {
+  std::error_code ec;
+  std::filesystem::create_directories(o.out, ec);
+  if (ec) {
+    std::cerr << "frontsteal-stress: cannot create " << o.out << ": " << ec.message() << "\n";
+    std::exit(1);
+  }
+#if defined(__SANITIZE_THREAD__)
+  const char* build = "ThreadSanitizer";
+#else
+  const char* build = "release (no sanitizer)";
+#endif
+  std::ofstream md(std::filesystem::path(o.out) / (o.rates ? "rates.md" : "stress.md"));
+  std::ofstream js(std::filesystem::path(o.out) / (o.rates ? "rates.json" : "stress.json"));
+  md << "# " << (o.rates ? "Duplicate rates on real hardware" : "Stress results") << " (measured)\n\n";
+  if (!races.empty()) {
+    md << "## The handshake raced head-on\n\nEach round the owner claims a list of " << o.race_items
+       << " items (" << o.race_work << " multiply-adds after each) while the thief makes one steal attempt on it at the same moment (stress/handshake_race.hpp); "
+          "a duplicate is an id the owner claimed and the thief kept.\n\n"
+       << "| policy | rounds | steals kept | items skipped after re-read | duplicates | rounds with duplicates | "
+          "duplicates per 1e6 rounds | seconds |\n|---|---|---|---|---|---|---|---|\n";
+    for (const auto& row : races) {
+      const auto& x = row.result;
+      md << "| " << row.policy << " | " << x.rounds << " | " << x.steals_kept << " | " << x.skipped << " | "
+         << x.duplicates << " | " << x.rounds_with_duplicates << " | " << fmt(x.duplicates_per_million_rounds(), 2)
+         << " | " << fmt(x.seconds, 1) << " |\n";
+    }
+    md << "\n## Frame level\n\n";
+  }
+  md
+     << "Build: " << build << "; " << std::thread::hardware_concurrency() << " hardware threads; items per frame "
+     << o.items << "; chaos " << (o.rates ? 0 : o.chaos) << " per million labelled accesses; seed " << o.seed
+     << "; " << (o.frames ? std::to_string(o.frames) + " frames" : fmt(o.seconds, 1) + " s") << " per case.\n\n"
+     << "| target | contract | P | frames | 0 dup | 1 dup | 2+ dup | lost | dup per 1e6 items | steals | skipped | chaos | verdict |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  js << "{\n  \"kind\": \"measured\", \"build\": \"" << build << "\", \"items\": " << o.items
+     << ", \"chaos_per_million\": " << (o.rates ? 0 : o.chaos) << ",\n  \"handshake_race\": [";
+  for (std::size_t i = 0; i < races.size(); ++i) {
+    const auto& x = races[i].result;
+    js << (i ? ",\n    " : "\n    ") << "{\"policy\": \"" << races[i].policy << "\", \"rounds\": " << x.rounds
+       << ", \"items_per_round\": " << o.race_items << ", \"steals_kept\": " << x.steals_kept
+       << ", \"skipped\": " << x.skipped << ", \"duplicates\": " << x.duplicates
+       << ", \"rounds_with_duplicates\": " << x.rounds_with_duplicates << ", \"seconds\": " << x.seconds << "}";
+  }
+  js << "],\n  \"cases\": [\n";
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& c = cases[i];
+    md << "| " << c.target << " | " << c.contract << " | " << c.threads << " | " << c.frames << " | " << c.frames_dup0
+       << " | " << c.frames_dup1 << " | " << c.frames_dup2plus << " | " << c.lost << " | "
+       << fmt(c.duplicates_per_million_items(), 3) << " | " << c.steals << " | " << c.skipped << " | " << c.chaos
+       << " | " << c.verdict << " |\n";
+    js << "    {\"target\": \"" << c.target << "\", \"contract\": \"" << c.contract << "\", \"threads\": " << c.threads
+       << ", \"frames\": " << c.frames << ", \"frames_with_0_duplicates\": " << c.frames_dup0
+       << ", \"frames_with_1_duplicate\": " << c.frames_dup1 << ", \"frames_with_2plus_duplicates\": "
+       << c.frames_dup2plus << ", \"lost\": " << c.lost << ", \"duplicated\": " << c.duplicated
+       << ", \"duplicates_per_million_items\": " << c.duplicates_per_million_items() << ", \"steals\": " << c.steals
+       << ", \"skipped\": " << c.skipped << ", \"chaos_injections\": " << c.chaos << ", \"seconds\": " << c.seconds
+       << ", \"passed\": " << (c.passed ? "true" : "false") << "}" << (i + 1 < cases.size() || !faults.empty() ? "," : "")
+       << "\n";
+  }
+  if (!faults.empty()) {
+    md << "\n## Faults\n\n| fault | result | detail |\n|---|---|---|\n";
+    for (std::size_t i = 0; i < faults.size(); ++i) {
+      const auto& f = faults[i];
+      md << "| " << f.name << " | " << (f.passed ? "pass" : "**FAIL**") << " | " << f.detail << " |\n";
+      js << "    {\"fault\": \"" << f.name << "\", \"passed\": " << (f.passed ? "true" : "false") << "}"
+         << (i + 1 < faults.size() ? "," : "") << "\n";
+    }
+  }
+  md << "\n" << (all_ok ? "All cases as expected" : "**Some cases failed**") << "; total " << fmt(seconds, 1) << " s.\n";
+  js << "  ],\n  \"all_passed\": " << (all_ok ? "true" : "false") << ", \"seconds\": " << seconds << "\n}\n";
+}
+
+void print_case(const CaseResult& c) {
+  std::printf("%-30s P=%-2u frames %8llu | dup 0:%llu 1:%llu 2+:%llu | lost %llu | %8.3f dup/1e6 items | %s\n",
+              c.target.c_str(), c.threads, static_cast<unsigned long long>(c.frames),
+              static_cast<unsigned long long>(c.frames_dup0), static_cast<unsigned long long>(c.frames_dup1),
+              static_cast<unsigned long long>(c.frames_dup2plus), static_cast<unsigned long long>(c.lost),
+              c.duplicates_per_million_items(), c.verdict.c_str());
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o = parse(argc, argv);
+  const auto started = std::chrono::steady_clock::now();
+  std::vector<CaseResult> cases;
+  std::vector<FaultResult> faults;
+  std::vector<RaceRow> races;
+  bool all_ok = true;
+
+  if (o.rates) {
+    // Duplicate rates on the real memory model: no chaos, trivial items so claims and steals collide often.
+    chaos_settings() = {0, o.seed};
+    std::vector<TargetInfo> rate_targets{stealing_target<Paper, StdBackend>(), stealing_target<Fenced, StdBackend>()};
+    std::vector<model::PolicyTable> tables;
+    for (const auto& m : model::one_step_mutants(model::table_of<Fenced>())) tables.push_back(m.table);
+    for (const auto& m : model::one_step_mutants(model::table_of<Minimal>())) tables.push_back(m.table);
+    auto race = [&](const std::string& name, auto run) {
+      HandshakeRaceResult x = run();
+      if (!o.quiet) {
+        std::printf("race %-32s %9llu rounds  %7llu duplicates  %10.2f per 1e6 rounds  (%llu steals kept, %llu skipped)\n",
+                    name.c_str(), static_cast<unsigned long long>(x.rounds), static_cast<unsigned long long>(x.duplicates),
+                    x.duplicates_per_million_rounds(), static_cast<unsigned long long>(x.steals_kept),
+                    static_cast<unsigned long long>(x.skipped));
+        std::fflush(stdout);
+      }
+      races.push_back({name, x});
+    };
+    const double race_seconds = 20;
+    race("Paper", [&] { return race_handshake<Paper>(o.rounds, o.race_items, o.race_work, race_seconds); });
+    race("SeqCst", [&] { return race_handshake<SeqCst>(o.rounds, o.race_items, o.race_work, race_seconds); });
+    race("Fenced", [&] { return race_handshake<Fenced>(o.rounds, o.race_items, o.race_work, race_seconds); });
+    race("Minimal", [&] { return race_handshake<Minimal>(o.rounds, o.race_items, o.race_work, race_seconds); });
+    if (membarrier_status().available) {
+      race("Asymmetric", [&] { return race_handshake<Asymmetric>(o.rounds, o.race_items, o.race_work, race_seconds); });
+    }
+    for (const auto& table : tables) {
+      model::current_table() = table;
+      race(table.name, [&] { return race_handshake<model::TablePolicy>(o.rounds, o.race_items, o.race_work, race_seconds); });
+    }
+    for (const auto& row : races) {  // exactly-once policies must show none, here too
+      const bool exact = row.policy == "SeqCst" || row.policy == "Fenced" || row.policy == "Minimal" ||
+                         row.policy == "Asymmetric";
+      if (exact && row.result.duplicates > 0) all_ok = false;
+    }
+    for (const auto& t : rate_targets) {
+      for (WorkerId p : o.threads) {
+        CaseResult c = run_case(t, p, o, 0);
+        c.passed = c.lost == 0;
+        c.verdict = c.lost ? "FAIL: lost items" : (c.duplicated ? "duplicates measured" : "no duplicate seen");
+        if (!o.quiet) print_case(c);
+        all_ok = all_ok && c.passed;
+        cases.push_back(c);
+      }
+    }
+    for (const auto& table : tables) {
+      model::current_table() = table;
+      for (WorkerId p : o.threads) {
+        CaseResult c = run_case(table_target(table), p, o, 0);
+        c.passed = c.lost == 0;
+        c.verdict = c.lost ? "lost items (this mutant loses work)" : (c.duplicated ? "duplicates measured" : "no duplicate seen");
+        if (!o.quiet) print_case(c);
+        cases.push_back(c);
+      }
+    }
+  } else {
+    chaos_settings() = {o.chaos, o.seed};
+    for (const auto& t : targets()) {
+      if (!o.targets.empty() && std::find(o.targets.begin(), o.targets.end(), "all") == o.targets.end() &&
+          std::find(o.targets.begin(), o.targets.end(), t.name) == o.targets.end()) {
+        continue;
+      }
+      for (WorkerId p : o.threads) {
+        if (!o.quiet) std::fprintf(stderr, "[%6.1fs] %s, P=%u\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), t.name.c_str(), p);
+        CaseResult c = run_case(t, p, o, 1);
+        print_case(c);
+        all_ok = all_ok && c.passed;
+        cases.push_back(c);
+      }
+    }
+    if (o.targets.empty()) {
+      for (auto fault : {fault_stall, fault_throw, fault_edges}) {
+        FaultResult f = fault(o);
+        std::printf("fault %-45s %s  %s\n", f.name.c_str(), f.passed ? "pass" : "FAIL", f.detail.c_str());
+        all_ok = all_ok && f.passed;
+        faults.push_back(f);
+      }
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  write_results(o, cases, faults, races, all_ok, seconds);
+  std::printf("\n%s in %.1f s; results in %s\n", all_ok ? "all cases as expected" : "FAILURES", seconds, o.out.c_str());
+  return all_ok ? 0 : 1;
+}
