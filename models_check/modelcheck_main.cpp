@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -17,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/cli_args.hpp"
 #include "core/negative_controls.hpp"
 #include "core/policies.hpp"
 #include "models_check/expected_verdicts.hpp"
@@ -29,6 +31,12 @@ using namespace frontsteal;
 using namespace frontsteal::model;
 
 namespace {
+
+constexpr std::string_view kProgram = "frontsteal-modelcheck";
+
+[[noreturn]] void usage_error(const std::string& m) { cli::usage_error(kProgram, m); }
+
+using cli::split_list;
 
 constexpr std::string_view kUsage = R"(usage: frontsteal-modelcheck [options]
 
@@ -78,28 +86,9 @@ struct Options {
   bool quiet = false;
 };
 
-[[noreturn]] void usage_error(const std::string& m) {
-  std::cerr << "frontsteal-modelcheck: " << m << "\n(run frontsteal-modelcheck --help for the options)\n";
-  std::exit(2);
-}
-
-std::vector<std::string> split_list(std::string_view s) {
-  std::vector<std::string> out;
-  while (!s.empty()) {
-    const auto comma = s.find(',');
-    out.emplace_back(s.substr(0, comma));
-    if (comma == std::string_view::npos) break;
-    s.remove_prefix(comma + 1);
-  }
-  return out;
-}
-
 std::uint64_t parse_count(std::string_view flag, std::string_view text) {
-  std::uint64_t v = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc{} || end != text.data() + text.size() || v == 0) {
-    usage_error(std::string(flag) + " expects a positive whole number, got '" + std::string(text) + "'");
-  }
+  const auto v = cli::parse_number<std::uint64_t>(kProgram, flag, text, 0, std::numeric_limits<std::uint64_t>::max());
+  if (v == 0) usage_error(std::string(flag) + " must be at least 1");
   return v;
 }
 

@@ -19,14 +19,25 @@
 #include <thread>
 #include <vector>
 
+#include "core/cli_args.hpp"
 #include "core/execution_counter.hpp"
 #include "core/membarrier.hpp"
 #include "core/policies.hpp"
 #include "core/stealing_scheduler.hpp"
+#include "core/synthetic_work.hpp"
 
 namespace fs = frontsteal;
 
 namespace {
+
+constexpr std::string_view kProgram = "frontsteal";
+
+[[noreturn]] void usage_error(const std::string& message) { fs::cli::usage_error(kProgram, message); }
+
+template <class T>
+T parse_number(std::string_view flag, std::string_view text, T min_value, T max_value) {
+  return fs::cli::parse_number<T>(kProgram, flag, text, min_value, max_value);
+}
 
 constexpr std::string_view kUsage = R"(usage: frontsteal [options]
 
@@ -61,25 +72,6 @@ struct Options {
   std::string json = "out/frontsteal-demo.json";
   bool quiet = false;
 };
-
-[[noreturn]] void usage_error(const std::string& message) {
-  std::cerr << "frontsteal: " << message << "\n(run frontsteal --help for the options)\n";
-  std::exit(2);
-}
-
-template <class T>
-T parse_number(std::string_view flag, std::string_view text, T min_value, T max_value) {
-  T value{};
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc{} || end != text.data() + text.size()) {
-    usage_error(std::string(flag) + " expects a whole number, got '" + std::string(text) + "'");
-  }
-  if (value < min_value || value > max_value) {
-    usage_error(std::string(flag) + " must be between " + std::to_string(min_value) + " and " +
-                std::to_string(max_value) + ", got " + std::string(text));
-  }
-  return value;
-}
 
 Options parse(int argc, char** argv) {
   Options o;
@@ -119,15 +111,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// Busy work of roughly `iterations` dependent multiply-adds (about 1 ns each on current x86).
-void spin_work(std::uint32_t iterations) {
-  std::uint32_t x = iterations;
-  for (std::uint32_t i = 0; i < iterations; ++i) {
-    x = x * 1664525u + 1013904223u;
-    asm volatile("" : "+r"(x));
-  }
-}
-
 std::uint32_t item_cost(fs::ItemId id, fs::ItemId n, std::uint32_t frame, std::uint32_t cold) {
   if (n == 0) return 0;
   const fs::ItemId hot_begin = static_cast<fs::ItemId>((std::uint64_t{frame} * n / 37) % n);
@@ -163,7 +146,7 @@ PolicyResult run_policy(const Options& o, std::string note = {}) {
   for (std::uint32_t f = 1; f <= o.frames; ++f) {
     const auto& st = scheduler.run_frame([&](fs::ItemId id, fs::WorkerId) {
       runs.record(id);
-      spin_work(item_cost(id, o.items, f, o.cost_ns));
+      fs::spin_work(item_cost(id, o.items, f, o.cost_ns));
     });
     const fs::ExecutionAudit audit = runs.audit_and_reset();
     r.lost += audit.lost;

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -19,7 +20,9 @@
 #include <thread>
 #include <vector>
 
+#include "core/cli_args.hpp"
 #include "core/execution_counter.hpp"
+#include "core/synthetic_work.hpp"
 #include "models_check/table_policy.hpp"
 #include "stress/chaos_backend.hpp"
 #include "stress/handshake_race.hpp"
@@ -30,6 +33,17 @@ using namespace frontsteal;
 using namespace frontsteal::stress;
 
 namespace {
+
+constexpr std::string_view kProgram = "frontsteal-stress";
+
+[[noreturn]] void usage_error(const std::string& m) { cli::usage_error(kProgram, m); }
+
+template <class T>
+T parse_number(std::string_view flag, std::string_view text) {
+  return cli::parse_number<T>(kProgram, flag, text, std::numeric_limits<T>::lowest(), std::numeric_limits<T>::max());
+}
+
+using cli::split_list;
 
 constexpr std::string_view kUsage = R"(usage: frontsteal-stress [options]
 
@@ -77,32 +91,6 @@ struct Options {
   std::uint32_t race_work = 50;
   bool quiet = false;
 };
-
-[[noreturn]] void usage_error(const std::string& m) {
-  std::cerr << "frontsteal-stress: " << m << "\n(run frontsteal-stress --help for the options)\n";
-  std::exit(2);
-}
-
-template <class T>
-T parse_number(std::string_view flag, std::string_view text) {
-  T v{};
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc{} || end != text.data() + text.size()) {
-    usage_error(std::string(flag) + " expects a number, got '" + std::string(text) + "'");
-  }
-  return v;
-}
-
-std::vector<std::string> split_list(std::string_view s) {
-  std::vector<std::string> out;
-  while (!s.empty()) {
-    const auto comma = s.find(',');
-    out.emplace_back(s.substr(0, comma));
-    if (comma == std::string_view::npos) break;
-    s.remove_prefix(comma + 1);
-  }
-  return out;
-}
 
 Options parse(int argc, char** argv) {
   Options o;
@@ -165,14 +153,6 @@ Options parse(int argc, char** argv) {
     }
   }
   return o;
-}
-
-void spin_work(std::uint32_t iterations) {
-  std::uint32_t x = iterations;
-  for (std::uint32_t i = 0; i < iterations; ++i) {
-    x = x * 1664525u + 1013904223u;
-    asm volatile("" : "+r"(x));
-  }
 }
 
 // Random, skewed costs that change every frame: a hot window (1/8 of the items, 20x) at a random place,

@@ -14,11 +14,13 @@
 #include "core/execution_counter.hpp"
 #include "core/negative_controls.hpp"
 #include "core/policies.hpp"
+#include "core/synthetic_work.hpp"
 
 namespace fs = frontsteal;
 using fs::ItemId;
 using fs::RangeList;
 using fs::WorkerId;
+using fs::spin_work;
 
 namespace {
 
@@ -32,15 +34,6 @@ bool policy_usable() {
     }
   }
   return true;
-}
-
-// Busy work the optimizer cannot remove.
-void spin_work(std::uint32_t iterations) {
-  std::uint32_t x = iterations;
-  for (std::uint32_t i = 0; i < iterations; ++i) {
-    x = x * 1664525u + 1013904223u;
-    asm volatile("" : "+r"(x));
-  }
 }
 
 // Skewed, changing costs: a hot window of N/8 items costs 40x the rest, and it moves every frame (the

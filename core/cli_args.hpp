@@ -1,0 +1,46 @@
+// cli_args.hpp — the small command-line helpers every frontsteal executable shares: a usage error that names
+// the program and points at --help, strict number parsing with a range, comma-separated lists.
+#pragma once
+
+#include <charconv>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace frontsteal::cli {
+
+// Bad input: say what was wrong and how to get help; exit status 2 (usage).
+[[noreturn]] inline void usage_error(std::string_view program, const std::string& message) {
+  std::cerr << program << ": " << message << "\n(run " << program << " --help for the options)\n";
+  std::exit(2);
+}
+
+// Parses all of `text` as a number within [min_value, max_value], or exits with a usage error naming `flag`.
+template <class T>
+T parse_number(std::string_view program, std::string_view flag, std::string_view text, T min_value, T max_value) {
+  T value{};
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc{} || end != text.data() + text.size()) {
+    usage_error(program, std::string(flag) + " expects a number, got '" + std::string(text) + "'");
+  }
+  if (value < min_value || value > max_value) {
+    usage_error(program, std::string(flag) + " must be between " + std::to_string(min_value) + " and " +
+                             std::to_string(max_value) + ", got " + std::string(text));
+  }
+  return value;
+}
+
+inline std::vector<std::string> split_list(std::string_view s) {
+  std::vector<std::string> out;
+  while (!s.empty()) {
+    const auto comma = s.find(',');
+    out.emplace_back(s.substr(0, comma));
+    if (comma == std::string_view::npos) break;
+    s.remove_prefix(comma + 1);
+  }
+  return out;
+}
+
+}  // namespace frontsteal::cli
