@@ -17,6 +17,7 @@
 #include "core/stealing_scheduler.hpp"
 #include "models_check/table_policy.hpp"
 #include "stress/chaos_backend.hpp"
+#include "stress/scenario_runner.hpp"
 
 namespace frontsteal::stress {
 
@@ -47,6 +48,8 @@ struct TargetInfo {
   Contract contract;
   bool negative_control;  // must be caught: exactly-once claimed, defect planted
   std::function<std::unique_ptr<StressTarget>(WorkerId, ItemId, std::uint64_t)> make;
+  // One run of a model-checking scenario (models_check/scenarios.hpp) on real threads.
+  std::function<ExecutionAudit(const model::ScenarioSpec&, std::uint64_t)> run_scenario;
 };
 
 template <class Policy, class Backend = ChaosBackend>
@@ -55,6 +58,9 @@ TargetInfo stealing_target() {
           Policy::defects() != Defect::kNone,
           [](WorkerId p, ItemId n, std::uint64_t seed) -> std::unique_ptr<StressTarget> {
             return std::make_unique<StealingTarget<Policy, Backend>>(p, n, seed);
+          },
+          [](const model::ScenarioSpec& spec, std::uint64_t seed) {
+            return run_scenario_on_threads<Policy, Backend>(spec, seed);
           }};
 }
 
@@ -72,6 +78,9 @@ inline TargetInfo table_target(const model::PolicyTable& table) {
   return {"stealing/" + table.name, table.contract, false,
           [](WorkerId p, ItemId n, std::uint64_t seed) -> std::unique_ptr<StressTarget> {
             return std::make_unique<StealingTarget<model::TablePolicy, StdBackend>>(p, n, seed);
+          },
+          [](const model::ScenarioSpec& spec, std::uint64_t seed) {
+            return run_scenario_on_threads<model::TablePolicy, StdBackend>(spec, seed);
           }};
 }
 
