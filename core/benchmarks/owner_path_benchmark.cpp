@@ -74,6 +74,7 @@ BENCHMARK(BM_PlainLoop);
 BENCHMARK_TEMPLATE(BM_OwnerPath, fs::Paper);
 BENCHMARK_TEMPLATE(BM_OwnerPath, fs::Asymmetric);
 BENCHMARK_TEMPLATE(BM_OwnerPath, fs::Fenced);
+BENCHMARK_TEMPLATE(BM_OwnerPath, fs::Minimal);
 BENCHMARK_TEMPLATE(BM_OwnerPath, fs::SeqCst);
 BENCHMARK(BM_MembarrierHeavyFence);
 
