@@ -15,6 +15,8 @@ packages=(
   relacy-dev
   # ThreadSanitizer runtime for g++ 12 (stress/)
   libtsan2
+  # vector and matrix math for the tessellation workload (tessellate/)
+  libglm-dev
 )
 
 missing=()

@@ -1,0 +1,128 @@
+// bezier_patch.hpp — rational tensor-product Bézier patches and their evaluation.
+//
+// S(u, v) = Σ_i Σ_j B_i^m(u) B_j^n(v) w_ij P_ij / Σ_i Σ_j B_i^m(u) B_j^n(v) w_ij,   (u, v) ∈ [0,1]²
+// with B_i^m the Bernstein polynomials of degree m. Control points are stored homogeneous, H_ij =
+// (w P, w), row-major with i along u. Degrees 1..kMaxDegree in each direction; weights must be > 0 (the
+// convex-hull property culling relies on).
+//
+// Evaluation tabulates B and B' in u and in v, sums the homogeneous point and its two partial derivatives,
+// and divides out (quotient rule): P = S/w, P_u = (S_u − P w_u)/w, likewise P_v. The normal is P_u × P_v,
+// normalized; where that vanishes (a collapsed edge, e.g. the teapot lid's pole) it is taken a hair inside
+// the patch instead.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace frontsteal::tess {
+
+inline constexpr int kMaxDegree = 7;
+
+struct BezierPatch {
+  int degree_u = 3;
+  int degree_v = 3;
+  std::vector<glm::dvec4> control;  // homogeneous (w·x, w·y, w·z, w), index i·(degree_v+1) + j
+
+  BezierPatch() = default;
+  BezierPatch(int du, int dv) : degree_u(du), degree_v(dv), control(static_cast<std::size_t>((du + 1) * (dv + 1))) {
+    if (du < 1 || du > kMaxDegree || dv < 1 || dv > kMaxDegree) {
+      throw std::invalid_argument("Bézier patch degree must be 1.." + std::to_string(kMaxDegree) + ", got " +
+                                  std::to_string(du) + "x" + std::to_string(dv));
+    }
+  }
+
+  std::size_t index(int i, int j) const noexcept { return static_cast<std::size_t>(i * (degree_v + 1) + j); }
+  const glm::dvec4& homogeneous(int i, int j) const noexcept { return control[index(i, j)]; }
+  double weight(int i, int j) const noexcept { return control[index(i, j)].w; }
+  glm::dvec3 point(int i, int j) const noexcept {
+    const glm::dvec4& h = control[index(i, j)];
+    return glm::dvec3(h) / h.w;
+  }
+  void set(int i, int j, const glm::dvec3& p, double w = 1.0) noexcept { control[index(i, j)] = glm::dvec4(p * w, w); }
+};
+
+struct SurfacePoint {
+  glm::dvec3 position;
+  glm::dvec3 du;  // ∂S/∂u
+  glm::dvec3 dv;  // ∂S/∂v
+  glm::dvec3 normal;
+};
+
+// Bernstein basis B_i^d(t), i = 0..d, and its derivative, by the triangle recurrence (stable on [0,1]).
+struct BernsteinTable {
+  std::array<double, kMaxDegree + 1> value{};
+  std::array<double, kMaxDegree + 1> derivative{};
+};
+
+inline BernsteinTable bernstein(int degree, double t) noexcept {
+  // Degree d-1 values first: B'_i^d = d (B_{i-1}^{d-1} − B_i^{d-1}).
+  std::array<double, kMaxDegree + 1> b{};
+  b[0] = 1.0;
+  const double s = 1.0 - t;
+  for (int d = 1; d < degree; ++d) {
+    double carry = 0.0;
+    for (int i = 0; i < d; ++i) {
+      const double keep = b[i];
+      b[i] = carry + s * keep;
+      carry = t * keep;
+    }
+    b[d] = carry;
+  }
+  BernsteinTable out;
+  for (int i = 0; i <= degree; ++i) {
+    const double lower = i > 0 ? b[i - 1] : 0.0;
+    const double same = i < degree ? b[i] : 0.0;
+    out.derivative[i] = degree * (lower - same);
+  }
+  // Raise the degree-(d-1) values to degree d for the values themselves.
+  double carry = 0.0;
+  for (int i = 0; i < degree; ++i) {
+    out.value[i] = carry + s * b[i];
+    carry = t * b[i];
+  }
+  out.value[degree] = carry;
+  return out;
+}
+
+// Position, partial derivatives and unit normal at (u, v), from precomputed basis tables.
+inline SurfacePoint evaluate(const BezierPatch& p, const BernsteinTable& bu, const BernsteinTable& bv) noexcept {
+  glm::dvec4 s(0.0), su(0.0), sv(0.0);
+  for (int i = 0; i <= p.degree_u; ++i) {
+    glm::dvec4 row(0.0), row_dv(0.0);
+    for (int j = 0; j <= p.degree_v; ++j) {
+      const glm::dvec4& h = p.homogeneous(i, j);
+      row += bv.value[j] * h;
+      row_dv += bv.derivative[j] * h;
+    }
+    s += bu.value[i] * row;
+    su += bu.derivative[i] * row;
+    sv += bu.value[i] * row_dv;
+  }
+  SurfacePoint out;
+  out.position = glm::dvec3(s) / s.w;
+  out.du = (glm::dvec3(su) - out.position * su.w) / s.w;  // quotient rule
+  out.dv = (glm::dvec3(sv) - out.position * sv.w) / s.w;
+  const glm::dvec3 n = glm::cross(out.du, out.dv);
+  const double len = glm::length(n);
+  out.normal = len > 0.0 ? n / len : glm::dvec3(0.0);
+  return out;
+}
+
+inline SurfacePoint evaluate(const BezierPatch& p, double u, double v) noexcept {
+  SurfacePoint sp = evaluate(p, bernstein(p.degree_u, u), bernstein(p.degree_v, v));
+  if (sp.normal == glm::dvec3(0.0)) {
+    // Collapsed edge: take the normal a hair towards the patch centre, where the surface is regular.
+    const double nu = u + (0.5 - u) * 1e-6;
+    const double nv = v + (0.5 - v) * 1e-6;
+    sp.normal = evaluate(p, bernstein(p.degree_u, nu), bernstein(p.degree_v, nv)).normal;
+  }
+  return sp;
+}
+
+}  // namespace frontsteal::tess
