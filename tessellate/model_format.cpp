@@ -1,0 +1,261 @@
+// model_format.cpp — the strict parser and the writer of the native model format (see model_format.hpp).
+#include "tessellate/model_format.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <istream>
+#include <limits>
+#include <ostream>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+namespace frontsteal::tess {
+namespace {
+
+constexpr double kClosureTolerance = 1e-9;
+
+class Parser {
+ public:
+  Parser(std::istream& in, std::string file) : in_(in), file_(std::move(file)) {}
+
+  Model parse() {
+    if (!next() || words_.size() != 2 || words_[0] != "frontsteal-model" || words_[1] != "1") {
+      fail("expected the header 'frontsteal-model 1'");
+    }
+    Model model;
+    while (next()) {
+      const std::string_view key = words_[0];
+      if (key == "model") {
+        if (!model.surfaces.empty()) fail("'model' must come before the first surface");
+        expect_fields(2, "model <name>");
+        model.name = words_[1];
+      } else if (key == "surface") {
+        if (words_.size() > 2) fail("'surface' takes at most a name");
+        model.surfaces.push_back(parse_surface(words_.size() == 2 ? std::string(words_[1]) : std::string()));
+      } else {
+        fail("unknown keyword '" + std::string(key) + "' (expected model or surface)");
+      }
+    }
+    return model;
+  }
+
+ private:
+  // Reads the next non-blank, non-comment line into words_; false at end of input.
+  bool next() {
+    std::string raw;
+    while (std::getline(in_, raw)) {
+      ++line_;
+      line_text_ = raw.substr(0, raw.find('#'));
+      words_.clear();
+      std::istringstream tokens(line_text_);
+      for (std::string w; tokens >> w;) words_.push_back(w);
+      if (!words_.empty()) return true;
+    }
+    return false;
+  }
+
+  [[noreturn]] void fail(const std::string& reason) const { throw ModelError(file_, line_, reason); }
+
+  void expect_fields(std::size_t n, const char* form) const {
+    if (words_.size() != n) fail("expected '" + std::string(form) + "'");
+  }
+
+  double number(std::size_t k, const char* what) const {
+    const std::string& w = words_[k];
+    double v = 0;
+    const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec != std::errc{} || end != w.data() + w.size()) fail(std::string(what) + " '" + w + "' is not a number");
+    if (!std::isfinite(v)) fail(std::string(what) + " '" + w + "' is not finite");
+    return v;
+  }
+
+  int integer(std::size_t k, const char* what, int lo, int hi) const {
+    const std::string& w = words_[k];
+    int v = 0;
+    const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec != std::errc{} || end != w.data() + w.size()) fail(std::string(what) + " '" + w + "' is not a whole number");
+    if (v < lo || v > hi) {
+      fail(std::string(what) + " " + w + " is out of range " + std::to_string(lo) + ".." + std::to_string(hi));
+    }
+    return v;
+  }
+
+  bool next_in(const char* block) {
+    if (!next()) fail(std::string("the file ends inside a '") + block + "' block");
+    return true;
+  }
+
+  Surface parse_surface(std::string name) {
+    Surface s;
+    s.name = std::move(name);
+    bool have_patch = false;
+    int points_expected = 0;
+    int points_read = 0;
+    while (next_in("surface")) {
+      const std::string_view key = words_[0];
+      if (key == "endsurface") {
+        if (!have_patch) fail("surface has no 'patch'");
+        if (points_read != points_expected) {
+          fail("surface ends after " + std::to_string(points_read) + " of " + std::to_string(points_expected) +
+               " control points");
+        }
+        check_loops(s);
+        return s;
+      } else if (key == "component") {
+        expect_fields(2, "component <k>");
+        s.component = integer(1, "component", 0, std::numeric_limits<int>::max());
+      } else if (key == "patch") {
+        if (have_patch) fail("a surface has exactly one 'patch'");
+        expect_fields(3, "patch <degree_u> <degree_v>");
+        const int du = integer(1, "degree", 1, kMaxDegree);
+        const int dv = integer(2, "degree", 1, kMaxDegree);
+        s.patch = BezierPatch(du, dv);
+        have_patch = true;
+        points_expected = (du + 1) * (dv + 1);
+      } else if (key == "cp") {
+        if (!have_patch) fail("'cp' before 'patch'");
+        if (words_.size() != 4 && words_.size() != 5) fail("expected 'cp <x> <y> <z> [<w>]'");
+        if (points_read == points_expected) {
+          fail("more than the " + std::to_string(points_expected) + " control points a degree " +
+               std::to_string(s.patch.degree_u) + "x" + std::to_string(s.patch.degree_v) + " patch has");
+        }
+        const glm::dvec3 p{number(1, "x"), number(2, "y"), number(3, "z")};
+        const double w = words_.size() == 5 ? number(4, "weight") : 1.0;
+        if (!(w > 0)) fail("weight " + words_[4] + " must be > 0");
+        const int i = points_read / (s.patch.degree_v + 1);
+        const int j = points_read % (s.patch.degree_v + 1);
+        s.patch.set(i, j, p, w);
+        ++points_read;
+      } else if (key == "loop") {
+        expect_fields(1, "loop");
+        s.loops.push_back(parse_loop());
+      } else {
+        fail("unknown keyword '" + std::string(key) + "' in a surface (component, patch, cp, loop, endsurface)");
+      }
+    }
+    return s;  // unreachable: next_in fails at end of input
+  }
+
+  TrimLoop parse_loop() {
+    TrimLoop loop;
+    const int loop_line = line_;
+    while (next_in("loop")) {
+      const std::string_view key = words_[0];
+      if (key == "endloop") {
+        if (loop.segments.empty()) fail("empty loop");
+        const glm::dvec2 first = loop.segments.front().control.front();
+        const glm::dvec2 last = loop.segments.back().control.back();
+        if (glm::length(first - last) > kClosureTolerance) {
+          std::ostringstream gap;
+          gap << "loop starting at line " << loop_line << " is not closed: it ends at (" << last.x << ", " << last.y
+              << ") but starts at (" << first.x << ", " << first.y << ")";
+          fail(gap.str());
+        }
+        loop_lines_.push_back(loop_line);
+        return loop;
+      } else if (key == "curve" || key == "polyline") {
+        expect_fields(2, key == "curve" ? "curve <degree>" : "polyline <count>");
+        const bool curve = key == "curve";
+        const int n = curve ? integer(1, "curve degree", 1, kMaxDegree) + 1 : integer(1, "polyline count", 2, 1 << 20);
+        std::vector<glm::dvec2> pts;
+        for (int k = 0; k < n; ++k) {
+          next_in("loop");
+          if (words_[0] != "pt") fail("expected 'pt <u> <v>' (" + std::to_string(k) + " of " + std::to_string(n) + " read)");
+          expect_fields(3, "pt <u> <v>");
+          const glm::dvec2 q{number(1, "u"), number(2, "v")};
+          if (q.x < 0 || q.x > 1 || q.y < 0 || q.y > 1) fail("trim point lies outside the domain [0,1]²");
+          pts.push_back(q);
+        }
+        if (!loop.segments.empty() && glm::length(loop.segments.back().control.back() - pts.front()) > kClosureTolerance) {
+          fail("segment does not start where the previous one ends");
+        }
+        if (curve) {
+          loop.segments.push_back({std::move(pts)});
+        } else {
+          for (std::size_t k = 0; k + 1 < pts.size(); ++k) loop.segments.push_back({{pts[k], pts[k + 1]}});
+        }
+      } else {
+        fail("unknown keyword '" + std::string(key) + "' in a loop (curve, polyline, endloop)");
+      }
+    }
+    return loop;  // unreachable
+  }
+
+  // Orientation (outer CCW, holes CW) and simple self-intersection of each loop of a finished surface.
+  void check_loops(const Surface& s) {
+    const std::size_t first = loop_lines_.size() - s.loops.size();
+    for (std::size_t k = 0; k < s.loops.size(); ++k) {
+      const int at = loop_lines_[first + k];
+      const std::vector<glm::dvec2> poly = sample_loop(s.loops[k]);
+      const double area2 = signed_area2(poly);
+      if (std::abs(area2) < 1e-14) throw ModelError(file_, at, "loop encloses no area");
+      if (k == 0 && area2 < 0) throw ModelError(file_, at, "outer loop is clockwise (material must lie on its left: counter-clockwise)");
+      if (k > 0 && area2 > 0) throw ModelError(file_, at, "hole loop is counter-clockwise (holes run clockwise)");
+      if (self_intersects(poly)) throw ModelError(file_, at, "loop intersects itself");
+    }
+  }
+
+  static bool self_intersects(const std::vector<glm::dvec2>& poly) {
+    const auto cross = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); };
+    const std::size_t n = poly.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::dvec2 a = poly[i], b = poly[(i + 1) % n];
+      for (std::size_t j = i + 2; j < n; ++j) {
+        if (i == 0 && j == n - 1) continue;  // adjacent through the wrap-around
+        const glm::dvec2 c = poly[j], d = poly[(j + 1) % n];
+        const double d1 = cross(a, b, c), d2 = cross(a, b, d), d3 = cross(c, d, a), d4 = cross(c, d, b);
+        if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
+      }
+    }
+    return false;
+  }
+
+  std::istream& in_;
+  std::string file_;
+  int line_ = 0;
+  std::string line_text_;
+  std::vector<std::string> words_;
+  std::vector<int> loop_lines_;  // line of each parsed loop's 'loop' keyword, for later checks
+};
+
+}  // namespace
+
+Model parse_model(std::istream& in, const std::string& file_name) { return Parser(in, file_name).parse(); }
+
+Model load_model(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ModelError(path, 0, "cannot open the file");
+  return parse_model(in, path);
+}
+
+void write_model(std::ostream& out, const Model& model) {
+  out << "frontsteal-model 1\n" << std::setprecision(17);
+  if (!model.name.empty()) out << "model " << model.name << "\n";
+  for (const Surface& s : model.surfaces) {
+    out << "surface" << (s.name.empty() ? "" : " " + s.name) << "\n";
+    if (s.component >= 0) out << "  component " << s.component << "\n";
+    out << "  patch " << s.patch.degree_u << " " << s.patch.degree_v << "\n";
+    for (int i = 0; i <= s.patch.degree_u; ++i) {
+      for (int j = 0; j <= s.patch.degree_v; ++j) {
+        const glm::dvec3 p = s.patch.point(i, j);
+        out << "  cp " << p.x << " " << p.y << " " << p.z;
+        if (s.patch.weight(i, j) != 1.0) out << " " << s.patch.weight(i, j);
+        out << "\n";
+      }
+    }
+    for (const TrimLoop& loop : s.loops) {
+      out << "  loop\n";
+      for (const TrimSegment& seg : loop.segments) {
+        out << "    curve " << seg.degree() << "\n";
+        for (const glm::dvec2& q : seg.control) out << "    pt " << q.x << " " << q.y << "\n";
+      }
+      out << "  endloop\n";
+    }
+    out << "endsurface\n";
+  }
+}
+
+}  // namespace frontsteal::tess
