@@ -32,6 +32,39 @@ T parse_number(std::string_view program, std::string_view flag, std::string_view
   return value;
 }
 
+// Walks argv flag by flag; answers --help / -h itself (prints the usage text, exits 0) and turns a flag
+// whose value is missing into a usage error.
+class ArgReader {
+ public:
+  ArgReader(int argc, char** argv, std::string_view program, std::string_view usage)
+      : argc_(argc), argv_(argv), program_(program), usage_(usage) {}
+
+  // Moves to the next flag; false when none is left.
+  bool next() {
+    if (++i_ >= argc_) return false;
+    flag_ = argv_[i_];
+    if (flag_ == "--help" || flag_ == "-h") {
+      std::cout << usage_;
+      std::exit(0);
+    }
+    return true;
+  }
+  std::string_view flag() const noexcept { return flag_; }
+  // The argument after the current flag.
+  std::string_view value() {
+    if (i_ + 1 >= argc_) usage_error(program_, std::string(flag_) + " needs a value");
+    return argv_[++i_];
+  }
+
+ private:
+  int argc_;
+  char** argv_;
+  std::string_view program_;
+  std::string_view usage_;
+  int i_ = 0;
+  std::string_view flag_;
+};
+
 inline std::vector<std::string> split_list(std::string_view s) {
   std::vector<std::string> out;
   while (!s.empty()) {

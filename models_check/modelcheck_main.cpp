@@ -110,16 +110,11 @@ Options parse(int argc, char** argv) {
   Options o;
   std::string policies = "all";
   std::string scenario_list = "all";
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view a = argv[i];
-    auto value = [&]() -> std::string_view {
-      if (i + 1 >= argc) usage_error(std::string(a) + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (a == "--tier") {
+  cli::ArgReader args(argc, argv, kProgram, kUsage);
+  while (args.next()) {
+    const std::string_view a = args.flag();
+    auto value = [&] { return args.value(); };
+    if (a == "--tier") {
       o.tier = value();
       if (o.tier != "fast" && o.tier != "slow") usage_error("--tier is fast or slow, got '" + o.tier + "'");
     } else if (a == "--policy") {

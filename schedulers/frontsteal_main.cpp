@@ -76,16 +76,11 @@ struct Options {
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view arg = argv[i];
-    auto value = [&]() -> std::string_view {
-      if (i + 1 >= argc) usage_error(std::string(arg) + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--help" || arg == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (arg == "--policy") {
+  fs::cli::ArgReader args(argc, argv, kProgram, kUsage);
+  while (args.next()) {
+    const std::string_view arg = args.flag();
+    auto value = [&] { return args.value(); };
+    if (arg == "--policy") {
       o.policy = value();
       if (o.policy != "all" && o.policy != "SeqCst" && o.policy != "Paper" && o.policy != "Fenced" &&
           o.policy != "Minimal" && o.policy != "Asymmetric") {

@@ -97,16 +97,11 @@ struct Options {
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view a = argv[i];
-    auto value = [&]() -> std::string_view {
-      if (i + 1 >= argc) usage_error(std::string(a) + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      std::exit(0);
-    } else if (a == "--list") {
+  cli::ArgReader args(argc, argv, kProgram, kUsage);
+  while (args.next()) {
+    const std::string_view a = args.flag();
+    auto value = [&] { return args.value(); };
+    if (a == "--list") {
       for (const auto& t : targets()) {
         std::cout << t.name << "  (" << name(t.contract) << (t.negative_control ? ", negative control" : "") << ")\n";
       }

@@ -7,18 +7,12 @@
 #include <cmath>
 #include <random>
 
+#include "tests/tessellate/random_patch.hpp"
+
 namespace ts = frontsteal::tess;
+using frontsteal::tess::testing::random_patch;
 
 namespace {
-
-ts::BezierPatch random_patch(std::mt19937_64& rng, int du, int dv, bool rational) {
-  std::uniform_real_distribution<double> coord(-1.0, 1.0), weight(0.5, 2.0);
-  ts::BezierPatch p(du, dv);
-  for (int i = 0; i <= du; ++i) {
-    for (int j = 0; j <= dv; ++j) p.set(i, j, {coord(rng), coord(rng), coord(rng)}, rational ? weight(rng) : 1.0);
-  }
-  return p;
-}
 
 // A quarter of the unit cylinder around the z axis: rational quadratic in u (weights 1, √2/2, 1), linear in v.
 ts::BezierPatch quarter_cylinder() {

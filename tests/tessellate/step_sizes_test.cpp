@@ -6,11 +6,14 @@
 
 #include <cmath>
 #include <random>
+
+#include "tests/tessellate/random_patch.hpp"
 #include <sstream>
 
 #include "tessellate/grid_tessellator.hpp"
 
 namespace ts = frontsteal::tess;
+using frontsteal::tess::testing::random_patch;
 
 namespace {
 
@@ -39,15 +42,6 @@ Worst worst_deviation(const ts::BezierPatch& p, ts::StepSizes steps, std::mt1993
     if (d > w.deviation) w = {d, u, v};
   }
   return w;
-}
-
-ts::BezierPatch random_patch(std::mt19937_64& rng, int du, int dv, bool rational) {
-  std::uniform_real_distribution<double> coord(-1.0, 1.0), weight(0.5, 2.0);
-  ts::BezierPatch p(du, dv);
-  for (int i = 0; i <= du; ++i) {
-    for (int j = 0; j <= dv; ++j) p.set(i, j, {coord(rng), coord(rng), coord(rng)}, rational ? weight(rng) : 1.0);
-  }
-  return p;
 }
 
 // y = x² over x ∈ [0,1], extruded along z: the chord deviation of a parabola is exactly δ²|S''|/8, so the
