@@ -1,11 +1,13 @@
 // grid_tessellator.hpp — an untrimmed patch as a uniform (n_u+1) × (n_v+1) grid of vertices, two triangles
-// per cell split along the (i,j)–(i+1,j+1) diagonal.
+// per cell split along the (i,j)–(i+1,j+1) diagonal. Rows are evaluated through RowCurve (below).
 //
 // Output goes into caller-owned buffers that keep their capacity across frames (clear() keeps it), so a
 // steady-state frame allocates nothing. The basis in v is tabulated once per column and reused by every row.
 // A pure function of (patch, steps): it can run on any worker, in any order, and twice without harm.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -19,14 +21,58 @@ namespace frontsteal::tess {
 struct TriangleBuffers {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;          // each vertex's (u, v): texture coordinates, and what tests check
   std::vector<std::uint32_t> indices;  // three per triangle
 
   void clear() noexcept {
     positions.clear();
     normals.clear();
+    uvs.clear();
     indices.clear();
   }
   std::size_t triangle_count() const noexcept { return indices.size() / 3; }
+  std::uint32_t add_vertex(const SurfacePoint& sp, double u, double v) {
+    positions.emplace_back(sp.position);
+    normals.emplace_back(sp.normal);
+    uvs.emplace_back(static_cast<float>(u), static_cast<float>(v));
+    return static_cast<std::uint32_t>(positions.size() - 1);
+  }
+};
+
+// One row of the grid at fixed u: the patch collapsed to a curve in v (homogeneous control values R_j and
+// their u-derivatives D_j), so each vertex costs 3(n+1) multiply-adds instead of 3(m+1)(n+1).
+struct RowCurve {
+  std::array<glm::dvec4, kMaxDegree + 1> value{}, du{};
+
+  void collapse(const BezierPatch& p, const BernsteinTable& bu) noexcept {
+    for (int j = 0; j <= p.degree_v; ++j) {
+      glm::dvec4 r(0.0), d(0.0);
+      for (int i = 0; i <= p.degree_u; ++i) {
+        const glm::dvec4& h = p.homogeneous(i, j);
+        r += bu.value[i] * h;
+        d += bu.derivative[i] * h;
+      }
+      value[j] = r;
+      du[j] = d;
+    }
+  }
+  SurfacePoint at(int degree_v, const BernsteinTable& bv) const noexcept {
+    glm::dvec4 s(0.0), su(0.0), sv(0.0);
+    for (int j = 0; j <= degree_v; ++j) {
+      s += bv.value[j] * value[j];
+      su += bv.value[j] * du[j];
+      sv += bv.derivative[j] * value[j];
+    }
+    SurfacePoint out;
+    const double inv_w = 1.0 / s.w;
+    out.position = glm::dvec3(s) * inv_w;
+    out.du = (glm::dvec3(su) - out.position * su.w) * inv_w;  // quotient rule
+    out.dv = (glm::dvec3(sv) - out.position * sv.w) * inv_w;
+    const glm::dvec3 n = glm::cross(out.du, out.dv);
+    const double len2 = glm::dot(n, n);
+    out.normal = len2 > 0.0 ? n / std::sqrt(len2) : glm::dvec3(0.0);
+    return out;
+  }
 };
 
 inline void tessellate_untrimmed(const BezierPatch& patch, StepSizes steps, TriangleBuffers& out,
@@ -36,19 +82,21 @@ inline void tessellate_untrimmed(const BezierPatch& patch, StepSizes steps, Tria
   const int nv = steps.n_v;
   v_basis_scratch.resize(static_cast<std::size_t>(nv + 1));
   for (int j = 0; j <= nv; ++j) v_basis_scratch[j] = bernstein(patch.degree_v, static_cast<double>(j) / nv);
+  RowCurve row;
   // Vertices, row by row along u.
   for (int i = 0; i <= nu; ++i) {
     const double u = static_cast<double>(i) / nu;
-    const BernsteinTable bu = bernstein(patch.degree_u, u);
+    row.collapse(patch, bernstein(patch.degree_u, u));
     for (int j = 0; j <= nv; ++j) {
-      SurfacePoint sp = evaluate(patch, bu, v_basis_scratch[j]);
-      if (sp.normal == glm::dvec3(0.0)) sp.normal = evaluate(patch, u, static_cast<double>(j) / nv).normal;
-      out.positions.emplace_back(sp.position);
-      out.normals.emplace_back(sp.normal);
+      const double v = static_cast<double>(j) / nv;
+      SurfacePoint sp = row.at(patch.degree_v, v_basis_scratch[j]);
+      if (sp.normal == glm::dvec3(0.0)) sp.normal = evaluate(patch, u, v).normal;  // collapsed edge
+      out.add_vertex(sp, u, v);
     }
   }
   // Two triangles per cell, counter-clockwise seen from the side the normal S_u × S_v points to.
   const auto at = [nv](int i, int j) { return static_cast<std::uint32_t>(i * (nv + 1) + j); };
+  out.indices.reserve(static_cast<std::size_t>(6 * nu * nv));
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
       out.indices.insert(out.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});

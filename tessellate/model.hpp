@@ -30,6 +30,8 @@ struct Surface {
   BezierPatch patch;
   std::vector<TrimLoop> loops;  // first loop outer (CCW); the rest holes (CW)
   int component = -1;
+  // Part of a closed, outward-oriented solid (S_u × S_v points out): its back faces may be culled.
+  bool solid = false;
 };
 
 struct Model {

@@ -104,6 +104,9 @@ class Parser {
         }
         check_loops(s);
         return s;
+      } else if (key == "solid") {
+        expect_fields(1, "solid");
+        s.solid = true;
       } else if (key == "component") {
         expect_fields(2, "component <k>");
         s.component = integer(1, "component", 0, std::numeric_limits<int>::max());
@@ -133,7 +136,7 @@ class Parser {
         expect_fields(1, "loop");
         s.loops.push_back(parse_loop());
       } else {
-        fail("unknown keyword '" + std::string(key) + "' in a surface (component, patch, cp, loop, endsurface)");
+        fail("unknown keyword '" + std::string(key) + "' in a surface (component, solid, patch, cp, loop, endsurface)");
       }
     }
     return s;  // unreachable: next_in fails at end of input
@@ -237,6 +240,7 @@ void write_model(std::ostream& out, const Model& model) {
   for (const Surface& s : model.surfaces) {
     out << "surface" << (s.name.empty() ? "" : " " + s.name) << "\n";
     if (s.component >= 0) out << "  component " << s.component << "\n";
+    if (s.solid) out << "  solid\n";
     out << "  patch " << s.patch.degree_u << " " << s.patch.degree_v << "\n";
     for (int i = 0; i <= s.patch.degree_u; ++i) {
       for (int j = 0; j <= s.patch.degree_v; ++j) {
@@ -248,7 +252,18 @@ void write_model(std::ostream& out, const Model& model) {
     }
     for (const TrimLoop& loop : s.loops) {
       out << "  loop\n";
-      for (const TrimSegment& seg : loop.segments) {
+      for (std::size_t k = 0; k < loop.segments.size();) {
+        // Runs of straight segments are written as one polyline.
+        std::size_t run = k;
+        while (run < loop.segments.size() && loop.segments[run].degree() == 1) ++run;
+        if (run > k) {
+          out << "    polyline " << run - k + 1 << "\n";
+          for (std::size_t q = k; q < run; ++q) out << "    pt " << loop.segments[q].control[0].x << " " << loop.segments[q].control[0].y << "\n";
+          out << "    pt " << loop.segments[run - 1].control[1].x << " " << loop.segments[run - 1].control[1].y << "\n";
+          k = run;
+          continue;
+        }
+        const TrimSegment& seg = loop.segments[k++];
         out << "    curve " << seg.degree() << "\n";
         for (const glm::dvec2& q : seg.control) out << "    pt " << q.x << " " << q.y << "\n";
       }

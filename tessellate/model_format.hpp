@@ -5,6 +5,8 @@
 //   model <name>                        optional, once, before the first surface
 //   surface [<name>]                    one block per surface
 //     component <k>                     optional: connected-component id (>= 0)
+//     solid                             optional: part of a closed solid whose normals S_u × S_v point
+//                                       outwards (back faces may be culled)
 //     patch <degree_u> <degree_v>       degrees 1..7
 //     cp <x> <y> <z> [<w>]              (degree_u+1)(degree_v+1) control points, i along u outer, j along v
 //                                       inner; w > 0 (default 1)

@@ -1,0 +1,310 @@
+// surface_tessellator.hpp — one trimmed surface, one camera: cull, choose step sizes, triangulate.
+//
+// Per frame and surface (paper §2):
+//   1. Culling (culling.hpp): the control box against the frustum; solids' back faces by the cone of normals.
+//   2. Object-space tolerances from pixels. A displacement Δ at view depth z moves the image by at most
+//      (f_px / z)·√(1 + (x/z)² + (y/z)²)·‖Δ‖ pixels (the Jacobian of x ↦ f x/z has that largest singular value),
+//      and inside the frustum |x/z| ≤ tan(fovx/2), |y/z| ≤ tan(fovy/2). With d_min the nearest depth of the
+//      control box (at least the near plane), every point of the patch and of its triangles is at depth ≥ d_min,
+//      so ε_obj = ε_px · d_min / (f_px · k), k = √(1 + tan²(fovx/2) + tan²(fovy/2)), keeps the screen deviation
+//      within ε_px (the plain ε_px·d_min/f_px of the literature ignores k, up to 1.5 at the image corners).
+//      The same conversion turns the size bound (edges ≤ max_edge_pixels) into an object length.
+//   3. Step sizes n_u, n_v (step_sizes.hpp): the larger of the deviation bound (Filip et al.) and the size
+//      bound, clamped to max_steps. The deviation bound holds for every triangle whose vertices lie in one grid
+//      cell (the variance of a distribution on [u₀,u₁] is at most δu²/4), so it covers trimmed cells too.
+//   4. Trim curves to polylines: n_t per Bézier trim segment c of degree d ≥ 2 from Wang's formula in the
+//      domain, n_t = ⌈√(d(d−1)·max‖Δ²c‖ / (8 ε_dom))⌉ with ε_dom = ε_obj / (M_u + M_v) (M_u, M_v bound ‖S_u‖,
+//      ‖S_v‖, so a domain error δ moves the surface by at most (M_u + M_v)·‖δ‖∞), and at least the size bound
+//      d·(M_u max|Δu_k| + M_v max|Δv_k|) / ℓ_obj; degree-1 segments stay single segments (the grid lines they
+//      cross add the vertices the surface needs).
+//   5. Untrimmed: the uniform grid (grid_tessellator.hpp). Trimmed: the grid cut by the trim polylines
+//      (trim_region.hpp); full cells give two triangles split by the diagonal, partial cells are ear-clipped
+//      (polygon_triangulation.hpp). Grid corners and trim points each become one vertex, shared by every
+//      triangle that uses them, so there are no cracks inside a patch.
+// A pure function of (surface, camera, settings): it can run on any worker, in any order, and twice without
+// harm. Buffers and scratch keep their capacity across frames: no allocation in steady state.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "tessellate/bezier_patch.hpp"
+#include "tessellate/camera.hpp"
+#include "tessellate/culling.hpp"
+#include "tessellate/grid_tessellator.hpp"
+#include "tessellate/model.hpp"
+#include "tessellate/polygon_triangulation.hpp"
+#include "tessellate/step_sizes.hpp"
+#include "tessellate/trim_region.hpp"
+
+namespace frontsteal::tess {
+
+struct TessellationSettings {
+  double pixel_tolerance = 1.0;   // largest screen-space deviation of the triangles from the surface, pixels
+  double max_edge_pixels = 48.0;  // size bound: grid edges no longer than this on screen, pixels
+  int max_steps = 256;            // per direction and patch
+  int max_trim_steps = 128;       // per trim segment
+  bool frustum_culling = true;
+  bool back_face_culling = true;  // solids only
+};
+
+enum class Culled : std::uint8_t { no, frustum, back_face };
+
+// What a surface needs every frame that does not depend on the view.
+struct PreparedSurface {
+  const Surface* surface = nullptr;
+  NetBounds bounds;
+  Box box;
+  double radius = 0;  // of the control points around box.centre()
+  NormalCone cone;
+  std::vector<const TrimLoop*> loops;  // trim loops; empty when untrimmed or trimmed by the domain alone
+  bool trimmed() const noexcept { return !loops.empty(); }
+};
+
+namespace detail {
+
+inline bool is_domain_boundary(const TrimLoop& loop) {
+  for (const TrimSegment& seg : loop.segments) {
+    if (seg.degree() != 1) return false;
+    for (const glm::dvec2& p : seg.control) {
+      const bool on = p.x == 0.0 || p.x == 1.0 || p.y == 0.0 || p.y == 1.0;
+      if (!on) return false;
+    }
+  }
+  return std::abs(0.5 * signed_area2(sample_loop(loop)) - 1.0) < 1e-12;
+}
+
+}  // namespace detail
+
+inline PreparedSurface prepare_surface(const Surface& s) {
+  PreparedSurface p;
+  p.surface = &s;
+  p.bounds = net_bounds(s.patch);
+  p.box = control_box(s.patch);
+  const glm::dvec3 c = p.box.centre();
+  for (int i = 0; i <= s.patch.degree_u; ++i) {
+    for (int j = 0; j <= s.patch.degree_v; ++j) p.radius = std::max(p.radius, glm::length(s.patch.point(i, j) - c));
+  }
+  if (s.solid) p.cone = normal_cone(s.patch);
+  // A lone outer loop along the domain's boundary trims nothing; with holes, the region tracer needs it (it
+  // counts such a loop as winding +1 everywhere rather than walking it).
+  const bool only_domain = s.loops.size() == 1 && detail::is_domain_boundary(s.loops[0]);
+  if (!only_domain) {
+    for (const TrimLoop& loop : s.loops) p.loops.push_back(&loop);
+  }
+  return p;
+}
+
+// The view-dependent plan for one surface: culled or not, tolerances, step sizes.
+struct SurfacePlan {
+  Culled culled = Culled::no;
+  double epsilon = 0;      // object-space deviation tolerance
+  double edge_length = 0;  // object-space size bound
+  StepSizes steps;
+};
+
+inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, const Frustum& frustum,
+                                const TessellationSettings& settings) {
+  SurfacePlan plan;
+  if (settings.frustum_culling && outside_frustum(s.box, frustum)) {
+    plan.culled = Culled::frustum;
+    return plan;
+  }
+  if (settings.back_face_culling && s.surface->solid && faces_away(s.cone, s.box.centre(), s.radius, camera.eye)) {
+    plan.culled = Culled::back_face;
+    return plan;
+  }
+  const glm::dvec3 forward = camera.forward();
+  double d_min = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 8; ++k) d_min = std::min(d_min, glm::dot(s.box.corner(k) - camera.eye, forward));
+  d_min = std::max(d_min, camera.near_plane);
+  const double tx = camera.tan_half_fovx(), ty = camera.tan_half_fovy();
+  const double object_per_pixel = d_min / (camera.focal_pixels() * std::sqrt(1.0 + tx * tx + ty * ty));
+  plan.epsilon = settings.pixel_tolerance * object_per_pixel;
+  plan.edge_length = settings.max_edge_pixels * object_per_pixel;
+  const StepSizes d = deviation_steps(s.bounds, plan.epsilon, settings.max_steps);
+  const StepSizes z = size_steps(s.bounds, plan.edge_length, settings.max_steps);
+  plan.steps = {std::max(d.n_u, z.n_u), std::max(d.n_v, z.n_v)};
+  return plan;
+}
+
+// n_t for one trim segment (step 4 of the opening comment).
+inline int trim_segment_steps(const TrimSegment& seg, const NetBounds& b, double epsilon, double edge_length, int max_steps) {
+  const int d = seg.degree();
+  if (d <= 1) return 1;
+  double second = 0, du = 0, dv = 0;
+  for (int k = 0; k + 1 <= d; ++k) {
+    du = std::max(du, std::abs(seg.control[k + 1].x - seg.control[k].x));
+    dv = std::max(dv, std::abs(seg.control[k + 1].y - seg.control[k].y));
+    if (k + 2 <= d) second = std::max(second, glm::length(seg.control[k + 2] - 2.0 * seg.control[k + 1] + seg.control[k]));
+  }
+  const double eps_domain = epsilon / std::max(b.len_u + b.len_v, 1e-300);
+  const double wang = std::ceil(std::sqrt(d * (d - 1) * second / (8.0 * eps_domain)));
+  const double size = std::ceil(d * (b.len_u * du + b.len_v * dv) / edge_length);
+  return static_cast<int>(std::clamp(std::max(wang, size), 1.0, static_cast<double>(max_steps)));
+}
+
+// A per-surface cost estimate in "basis-weighted vertex evaluations", for static allocation: the grid's
+// vertices times the patch's (m+1)(n+1) control points, plus trimmed work (trim points and the partial cells
+// they cut, each about a vertex evaluation and an ear clip). Culled surfaces cost a little (the tests).
+inline double estimate_cost(const PreparedSurface& s, const SurfacePlan& plan, const TessellationSettings& settings) {
+  constexpr double kCullCost = 10.0;
+  if (plan.culled != Culled::no) return kCullCost;
+  const double per_vertex = (s.surface->patch.degree_u + 1.0) * (s.surface->patch.degree_v + 1.0);
+  const double grid = (plan.steps.n_u + 1.0) * (plan.steps.n_v + 1.0);
+  double trim_points = 0;
+  for (const TrimLoop* loop : s.loops) {
+    for (const TrimSegment& seg : loop->segments) {
+      trim_points += trim_segment_steps(seg, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps);
+    }
+  }
+  // A trim polyline of t points cuts about t + crossings cells; each costs a few evaluations.
+  const double trimmed_work = trim_points * 4.0 * per_vertex;
+  return kCullCost + grid * per_vertex + trimmed_work;
+}
+
+struct SurfaceResult {
+  Culled culled = Culled::no;
+  StepSizes steps;
+  std::uint32_t triangles = 0;
+  std::uint32_t trim_points = 0;
+  std::uint32_t partial_cells = 0;
+  std::uint32_t inconsistencies = 0;  // trim input the region tracer could not place (crossing loops)
+};
+
+// Per-worker scratch: everything a surface's tessellation needs, reused across surfaces and frames.
+struct TessellationScratch {
+  std::vector<BernsteinTable> u_basis, v_basis;
+  std::vector<double> u_lines, v_lines;
+  std::vector<Polygon2> loops;
+  GridTrimmer trimmer;
+  std::vector<std::uint32_t> corner_vertex, trim_vertex;  // output index or kNone
+  PolygonRing ring;
+  std::vector<PolygonRing> holes;
+  std::vector<std::uint32_t> ring_triangles, next, prev;
+  static constexpr std::uint32_t kNone = 0xffff'ffffu;
+};
+
+namespace detail {
+
+inline glm::dvec2 trim_point(const TrimSegment& seg, double t) {
+  glm::dvec2 c[kMaxDegree + 1];
+  const int d = seg.degree();
+  for (int k = 0; k <= d; ++k) c[k] = seg.control[k];
+  for (int r = 1; r <= d; ++r) {
+    for (int k = 0; k + r <= d; ++k) c[k] = (1 - t) * c[k] + t * c[k + 1];
+  }
+  return c[0];
+}
+
+}  // namespace detail
+
+// Triangulates the trimmed surface on the plan's grid into `out` (cleared first).
+inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfacePlan& plan,
+                                        const TessellationSettings& settings, TessellationScratch& scratch,
+                                        TriangleBuffers& out) {
+  const BezierPatch& patch = s.surface->patch;
+  const int nu = plan.steps.n_u, nv = plan.steps.n_v;
+  SurfaceResult result;
+  result.steps = plan.steps;
+  out.clear();
+  // Trim polylines at this frame's n_t.
+  scratch.loops.resize(s.loops.size());
+  for (std::size_t l = 0; l < s.loops.size(); ++l) {
+    Polygon2& poly = scratch.loops[l];
+    poly.clear();
+    for (const TrimSegment& seg : s.loops[l]->segments) {
+      const int n = trim_segment_steps(seg, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps);
+      for (int k = 0; k < n; ++k) poly.push_back(detail::trim_point(seg, static_cast<double>(k) / n));
+    }
+    result.trim_points += static_cast<std::uint32_t>(poly.size());
+  }
+  scratch.u_lines.resize(static_cast<std::size_t>(nu + 1));
+  scratch.v_lines.resize(static_cast<std::size_t>(nv + 1));
+  for (int i = 0; i <= nu; ++i) scratch.u_lines[i] = static_cast<double>(i) / nu;
+  for (int j = 0; j <= nv; ++j) scratch.v_lines[j] = static_cast<double>(j) / nv;
+  scratch.u_lines[nu] = scratch.v_lines[nv] = 1.0;
+  GridTrimmer& trimmer = scratch.trimmer;
+  trimmer.run(scratch.loops, scratch.u_lines, scratch.v_lines);
+
+  scratch.u_basis.resize(static_cast<std::size_t>(nu + 1));
+  scratch.v_basis.resize(static_cast<std::size_t>(nv + 1));
+  for (int i = 0; i <= nu; ++i) scratch.u_basis[i] = bernstein(patch.degree_u, scratch.u_lines[i]);
+  for (int j = 0; j <= nv; ++j) scratch.v_basis[j] = bernstein(patch.degree_v, scratch.v_lines[j]);
+  scratch.corner_vertex.assign(static_cast<std::size_t>((nu + 1) * (nv + 1)), TessellationScratch::kNone);
+  scratch.trim_vertex.assign(trimmer.points().size(), TessellationScratch::kNone);
+
+  const auto vertex = [&](std::uint32_t id) -> std::uint32_t {
+    if (id & GridTrimmer::kCornerBit) {
+      const std::uint32_t k = id & ~GridTrimmer::kCornerBit;
+      std::uint32_t& slot = scratch.corner_vertex[k];
+      if (slot == TessellationScratch::kNone) {
+        const int i = static_cast<int>(k / static_cast<std::uint32_t>(nv + 1));
+        const int j = static_cast<int>(k % static_cast<std::uint32_t>(nv + 1));
+        SurfacePoint sp = evaluate(patch, scratch.u_basis[i], scratch.v_basis[j]);
+        if (sp.normal == glm::dvec3(0.0)) sp.normal = evaluate(patch, scratch.u_lines[i], scratch.v_lines[j]).normal;
+        slot = out.add_vertex(sp, scratch.u_lines[i], scratch.v_lines[j]);
+      }
+      return slot;
+    }
+    std::uint32_t& slot = scratch.trim_vertex[id];
+    if (slot == TessellationScratch::kNone) {
+      const glm::dvec2 uv = trimmer.points()[id];
+      slot = out.add_vertex(evaluate(patch, uv.x, uv.y), uv.x, uv.y);
+    }
+    return slot;
+  };
+  const auto corner_id = [nv](int i, int j) { return GridTrimmer::kCornerBit | static_cast<std::uint32_t>(i * (nv + 1) + j); };
+
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      switch (trimmer.kind(i, j)) {
+        case CellKind::empty: break;
+        case CellKind::full: {
+          const std::uint32_t a = vertex(corner_id(i, j)), b = vertex(corner_id(i + 1, j));
+          const std::uint32_t c = vertex(corner_id(i + 1, j + 1)), d = vertex(corner_id(i, j + 1));
+          out.indices.insert(out.indices.end(), {a, b, c, a, c, d});
+          break;
+        }
+        case CellKind::partial: {
+          ++result.partial_cells;
+          for (const TracedPiece& piece : trimmer.trace(i, j)) {
+            scratch.ring = piece.outer;
+            scratch.holes.assign(piece.holes.begin(), piece.holes.end());
+            if (!scratch.holes.empty()) join_holes(scratch.ring, scratch.holes);
+            scratch.ring_triangles.clear();
+            clip_ears(scratch.ring, scratch.ring_triangles, scratch.next, scratch.prev);
+            for (std::uint32_t id : scratch.ring_triangles) out.indices.push_back(vertex(id));
+          }
+          break;
+        }
+      }
+    }
+  }
+  result.inconsistencies = static_cast<std::uint32_t>(trimmer.inconsistencies());
+  result.triangles = static_cast<std::uint32_t>(out.triangle_count());
+  return result;
+}
+
+// The whole per-frame step for one surface: cull, plan, triangulate into `out` (cleared first).
+inline SurfaceResult tessellate_surface(const PreparedSurface& s, const Camera& camera, const Frustum& frustum,
+                                        const TessellationSettings& settings, TessellationScratch& scratch,
+                                        TriangleBuffers& out) {
+  const SurfacePlan plan = plan_surface(s, camera, frustum, settings);
+  if (plan.culled != Culled::no) {
+    out.clear();
+    return {plan.culled, {}, 0, 0, 0, 0};
+  }
+  if (s.trimmed()) return tessellate_trimmed(s, plan, settings, scratch, out);
+  tessellate_untrimmed(s.surface->patch, plan.steps, out, scratch.v_basis);
+  SurfaceResult r;
+  r.steps = plan.steps;
+  r.triangles = static_cast<std::uint32_t>(out.triangle_count());
+  return r;
+}
+
+}  // namespace frontsteal::tess

@@ -1,0 +1,420 @@
+// Per-frame tessellation of trimmed surfaces (tessellate/surface_tessellator.hpp), fixed-seed property tests
+// that print their counterexample:
+//   - screen-space deviation of surface points from the triangles ≤ the pixel tolerance, trimmed or not;
+//   - no triangle outside the trimmed region; the triangulated area of a plate with a hole converges to the
+//     exact trimmed area as the tolerance shrinks;
+//   - adjacent untrimmed patches with equal step sizes share their boundary vertices (teapot), and do not
+//     with unequal ones (the negative control);
+//   - culling never removes a patch that has a visible point;
+//   - steady-state frames allocate nothing; components from adjacency; OBJ/PLY export.
+#include "tessellate/surface_tessellator.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <functional>
+#include <map>
+#include <set>
+#include <random>
+#include <sstream>
+
+#include "tessellate/components.hpp"
+#include "tessellate/mesh_export.hpp"
+#include "tessellate/model_format.hpp"
+#include "tests/tessellate/random_patch.hpp"
+#include "tests/tessellate/trim_shapes.hpp"
+
+namespace ts = frontsteal::tess;
+using namespace frontsteal::tess::testing;
+
+namespace {
+
+ts::Camera random_camera(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), dist(2.5, 6.0), fov(0.5, 1.2);
+  ts::Camera c;
+  glm::dvec3 dir;
+  do dir = {unit(rng), unit(rng), unit(rng)};
+  while (glm::length(dir) < 0.2 || glm::length(dir) > 1.0);
+  c.eye = glm::normalize(dir) * dist(rng);
+  c.target = {0.3 * unit(rng), 0.3 * unit(rng), 0.3 * unit(rng)};
+  c.up = std::abs(glm::normalize(c.target - c.eye).z) > 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 0, 1);
+  c.fovy_radians = fov(rng);
+  c.width = 640;
+  c.height = 480;
+  return c;
+}
+
+struct DeviationProbe {
+  double worst_px = 0;
+  glm::dvec2 at_uv{0.0};
+  int samples = 0;
+};
+
+// Random points of random triangles: S at the point's (u, v) against the triangle's linear interpolation,
+// both projected, where both land inside the viewport and in front of the near plane.
+DeviationProbe probe_deviation(const ts::BezierPatch& patch, const ts::TriangleBuffers& tri, const ts::Camera& cam,
+                               std::mt19937_64& rng, int samples) {
+  DeviationProbe probe;
+  if (tri.indices.empty()) return probe;
+  std::uniform_int_distribution<std::size_t> pick(0, tri.triangle_count() - 1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int s = 0; s < samples; ++s) {
+    const std::size_t t = pick(rng);
+    double a = unit(rng), b = unit(rng);
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    const double w[3] = {1 - a - b, a, b};
+    glm::dvec2 uv(0.0);
+    glm::dvec3 linear(0.0);
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = tri.indices[3 * t + k];
+      uv += w[k] * glm::dvec2(tri.uvs[v]);
+      linear += w[k] * glm::dvec3(tri.positions[v]);
+    }
+    const glm::dvec3 exact = ts::evaluate(patch, uv.x, uv.y).position;
+    const glm::dvec3 pe = cam.project(exact), pl = cam.project(linear);
+    const auto visible = [&](const glm::dvec3& p) {
+      return p.z > cam.near_plane && p.x >= 0 && p.x <= cam.width && p.y >= 0 && p.y <= cam.height;
+    };
+    if (!visible(pe) || !visible(pl)) continue;
+    ++probe.samples;
+    const double d = glm::length(glm::dvec2(pe) - glm::dvec2(pl));
+    if (d > probe.worst_px) probe.worst_px = d, probe.at_uv = uv;
+  }
+  return probe;
+}
+
+ts::Surface trimmed_random_surface(std::mt19937_64& rng, int du, int dv, bool rational) {
+  ts::Surface s;
+  s.patch = random_patch(rng, du, dv, rational);
+  std::uniform_int_distribution<int> verts(8, 30);
+  s.loops.push_back(polyline_loop(random_star(rng, {0.5, 0.5}, 0.3, 0.49, verts(rng), true)));
+  s.loops.push_back(polyline_loop(random_star(rng, {0.4, 0.5}, 0.04, 0.1, verts(rng), false)));
+  s.loops.push_back(circle_loop({0.62, 0.5}, 0.06, false));
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("screen-space deviation stays within the pixel tolerance, trimmed and untrimmed", "[tessellate]") {
+  std::mt19937_64 rng(5);
+  ts::TessellationSettings settings;
+  settings.max_steps = 4096;  // no clamping: the bound alone decides
+  settings.max_edge_pixels = 1e9;
+  ts::TessellationScratch scratch;
+  ts::TriangleBuffers tri;
+  int probed = 0;
+  for (int trial = 0; trial < 120; ++trial) {
+    const int du = 1 + trial % 4, dv = 1 + (trial / 4) % 4;
+    const bool rational = trial % 3 == 0;
+    const bool trimmed = trial % 2 == 0;
+    ts::Surface s = trimmed ? trimmed_random_surface(rng, du, dv, rational) : ts::Surface{"", random_patch(rng, du, dv, rational), {}, -1, false};
+    const ts::PreparedSurface prepared = ts::prepare_surface(s);
+    const ts::Camera cam = random_camera(rng);
+    for (double tol : {2.0, 0.5}) {
+      settings.pixel_tolerance = tol;
+      const ts::SurfaceResult r = ts::tessellate_surface(prepared, cam, ts::Frustum::of(cam), settings, scratch, tri);
+      if (r.culled != ts::Culled::no) continue;
+      REQUIRE(r.inconsistencies == 0);
+      const DeviationProbe probe = probe_deviation(s.patch, tri, cam, rng, 400);
+      probed += probe.samples > 0;
+      INFO("trial " << trial << " degree " << du << "x" << dv << (rational ? " rational" : "") << (trimmed ? " trimmed" : "")
+                    << ", steps " << r.steps.n_u << "x" << r.steps.n_v << ", tolerance " << tol << " px: worst "
+                    << probe.worst_px << " px at (u,v) = (" << probe.at_uv.x << ", " << probe.at_uv.y << ")");
+      // float vertex positions add ~1e-7 relative: far below a pixel here.
+      CHECK(probe.worst_px <= tol * 1.0001 + 1e-3);
+    }
+  }
+  CHECK(probed > 100);
+}
+
+TEST_CASE("negative control: a quarter of the step counts breaks the pixel tolerance", "[tessellate]") {
+  std::mt19937_64 rng(6);
+  ts::TessellationSettings settings;
+  settings.pixel_tolerance = 0.5;
+  settings.max_edge_pixels = 1e9;
+  ts::TessellationScratch scratch;
+  ts::TriangleBuffers tri;
+  double worst = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    ts::Surface s{"", random_patch(rng, 3, 3, false), {}, -1, false};
+    const ts::Camera cam = random_camera(rng);
+    const ts::PreparedSurface prepared = ts::prepare_surface(s);
+    ts::SurfacePlan plan = ts::plan_surface(prepared, cam, ts::Frustum::of(cam), settings);
+    if (plan.culled != ts::Culled::no) continue;
+    plan.steps = {std::max(1, plan.steps.n_u / 4), std::max(1, plan.steps.n_v / 4)};
+    std::vector<ts::BernsteinTable> basis;
+    ts::tessellate_untrimmed(s.patch, plan.steps, tri, basis);
+    worst = std::max(worst, probe_deviation(s.patch, tri, cam, rng, 400).worst_px);
+  }
+  CHECK(worst > settings.pixel_tolerance);
+}
+
+TEST_CASE("a plate with a circular hole: no triangle in the hole, area converges to the exact trimmed area", "[tessellate]") {
+  ts::Surface plate{"plate", flat_plate(1.0), {}, -1, false};
+  plate.loops.push_back(polyline_loop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));  // the domain: dropped as outer loop
+  plate.loops.push_back(circle_loop({0.5, 0.5}, 0.25, false));
+  const double exact = 1.0 + loop_area(plate.loops[1]);  // the hole's area is negative (clockwise)
+  const ts::PreparedSurface prepared = ts::prepare_surface(plate);
+  ts::Camera cam;
+  cam.eye = {0.5, 0.5, 1.5};
+  cam.target = {0.5, 0.5, 0.0};
+  cam.up = {0, 1, 0};
+  ts::TessellationScratch scratch;
+  ts::TriangleBuffers tri;
+  ts::TessellationSettings settings;
+  double previous_error = 1.0;
+  for (double tol : {8.0, 2.0, 0.5, 0.125, 0.03}) {
+    settings.pixel_tolerance = tol;
+    const ts::SurfacePlan plan = ts::plan_surface(prepared, cam, ts::Frustum::of(cam), settings);
+    const ts::SurfaceResult r = ts::tessellate_trimmed(prepared, plan, settings, scratch, tri);
+    REQUIRE(r.inconsistencies == 0);
+    double area = 0;
+    double deepest = 0;  // how far a triangle's centroid reaches into the hole
+    for (std::size_t t = 0; t < tri.indices.size(); t += 3) {
+      const glm::dvec3 a = tri.positions[tri.indices[t]], b = tri.positions[tri.indices[t + 1]], c = tri.positions[tri.indices[t + 2]];
+      area += 0.5 * glm::cross(b - a, c - a).z;  // counter-clockwise seen from +z: positive
+      const glm::dvec2 centroid = glm::dvec2((a + b + c) / 3.0);
+      deepest = std::max(deepest, 0.25 - glm::length(centroid - glm::dvec2(0.5)));
+    }
+    const double error = std::abs(area - exact);
+    // The trim polyline is inscribed within ε_dom of the curve; the Bézier circle is within 3e-4·r of a circle.
+    const double eps_domain = plan.epsilon / (prepared.bounds.len_u + prepared.bounds.len_v);
+    INFO("tolerance " << tol << " px: steps " << r.steps.n_u << "x" << r.steps.n_v << ", " << r.trim_points << " trim points, "
+                      << r.triangles << " triangles, area " << area << " vs exact " << exact << ", deepest " << deepest);
+    CHECK(deepest <= eps_domain + 0.25 * 2.8e-4 + 1e-9);
+    CHECK(error <= previous_error * 1.0000001);
+    // Inscribed chords within ε_dom of the curve lose at most perimeter · ε_dom of area.
+    CHECK(error <= 2 * std::numbers::pi * 0.25 * eps_domain);
+    previous_error = error;
+  }
+  CHECK(previous_error < 1e-4);
+}
+
+TEST_CASE("trimmed triangles stay inside their polyline trim region", "[tessellate]") {
+  std::mt19937_64 rng(8);
+  ts::TessellationScratch scratch;
+  ts::TriangleBuffers tri;
+  ts::TessellationSettings settings;
+  for (int trial = 0; trial < 60; ++trial) {
+    ts::Surface s{"", flat_plate(1.0), {}, -1, false};
+    std::uniform_int_distribution<int> verts(8, 40);
+    const auto outer = random_star(rng, {0.5, 0.5}, 0.3, 0.49, verts(rng), true);
+    const auto hole = random_star(rng, {0.5, 0.5}, 0.08, 0.2, verts(rng), false);
+    s.loops = {polyline_loop(outer), polyline_loop(hole)};
+    const double exact = 0.5 * (ts::signed_area2(outer) + ts::signed_area2(hole));
+    ts::Camera cam;
+    cam.eye = {0.5, 0.5, 1.0 + trial * 0.05};
+    cam.target = {0.5, 0.5, 0.0};
+    cam.up = {0, 1, 0};
+    const ts::PreparedSurface prepared = ts::prepare_surface(s);
+    const ts::SurfaceResult r = ts::tessellate_surface(prepared, cam, ts::Frustum::of(cam), settings, scratch, tri);
+    REQUIRE(r.culled == ts::Culled::no);
+    double area = 0;
+    int outside = 0;
+    const auto inside = [](const std::vector<glm::dvec2>& poly, glm::dvec2 p) {
+      bool in = false;
+      for (std::size_t k = 0, j = poly.size() - 1; k < poly.size(); j = k++) {
+        if ((poly[k].y > p.y) != (poly[j].y > p.y) &&
+            p.x < (poly[j].x - poly[k].x) * (p.y - poly[k].y) / (poly[j].y - poly[k].y) + poly[k].x) {
+          in = !in;
+        }
+      }
+      return in;
+    };
+    for (std::size_t t = 0; t < tri.indices.size(); t += 3) {
+      const glm::dvec2 a = tri.uvs[tri.indices[t]], b = tri.uvs[tri.indices[t + 1]], c = tri.uvs[tri.indices[t + 2]];
+      area += 0.5 * ts::detail::cross2(a, b, c);
+      const glm::dvec2 centroid = (a + b + c) / 3.0;
+      if (!inside(outer, centroid) || inside(hole, centroid)) ++outside;
+    }
+    INFO("trial " << trial << ": steps " << r.steps.n_u << "x" << r.steps.n_v << ", " << r.triangles << " triangles, area "
+                  << area << " vs " << exact);
+    CHECK(outside == 0);
+    CHECK(area == Approx(exact).margin(1e-5));  // polyline trims: the triangles tile the region exactly
+  }
+}
+
+TEST_CASE("culling never removes a patch with a visible point", "[tessellate]") {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), place(-3.0, 3.0);
+  ts::TessellationSettings settings;
+  int culled_frustum = 0, culled_back = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    ts::Surface s{"", random_patch(rng, 1 + trial % 3, 1 + trial % 4, trial % 2 == 0), {}, -1, true};
+    const glm::dvec3 offset{place(rng), place(rng), place(rng)};
+    // Every other patch a gently bent sheet (a narrow cone of normals, around ±z): the back-face test can fire.
+    if (trial % 2) {
+      for (int i = 0; i <= s.patch.degree_u; ++i) {
+        for (int j = 0; j <= s.patch.degree_v; ++j) {
+          const glm::dvec3 p{2.0 * i / s.patch.degree_u - 1 + 0.1 * (unit(rng) - 0.5), 2.0 * j / s.patch.degree_v - 1 + 0.1 * (unit(rng) - 0.5),
+                             0.3 * (unit(rng) - 0.5)};
+          s.patch.set(i, j, p, s.patch.weight(i, j));
+        }
+      }
+    }
+    for (glm::dvec4& h : s.patch.control) {
+      const glm::dvec3 p = glm::dvec3(h) / h.w * 0.3 + offset;
+      h = glm::dvec4(p * h.w, h.w);
+    }
+    const ts::PreparedSurface prepared = ts::prepare_surface(s);
+    const ts::Camera cam = random_camera(rng);
+    const ts::Frustum frustum = ts::Frustum::of(cam);
+    const ts::SurfacePlan plan = ts::plan_surface(prepared, cam, frustum, settings);
+    if (plan.culled == ts::Culled::no) continue;
+    (plan.culled == ts::Culled::frustum ? culled_frustum : culled_back)++;
+    // A culled patch must have no point inside the frustum that faces the eye (frustum culling: none inside).
+    for (int k = 0; k < 2000; ++k) {
+      const ts::SurfacePoint sp = ts::evaluate(s.patch, unit(rng), unit(rng));
+      const bool in_view = frustum.contains(sp.position);
+      const bool front = glm::dot(sp.normal, cam.eye - sp.position) > 0;
+      INFO("trial " << trial << " culled by " << (plan.culled == ts::Culled::frustum ? "frustum" : "back face")
+                    << " but the point (" << sp.position.x << ", " << sp.position.y << ", " << sp.position.z << ") is visible");
+      REQUIRE_FALSE((in_view && (plan.culled == ts::Culled::frustum || front)));
+    }
+  }
+  // Both tests must actually fire for this to mean anything.
+  CHECK(culled_frustum > 20);
+  CHECK(culled_back > 10);
+}
+
+namespace {
+
+ts::Model teapot() { return ts::load_model(std::string(FRONTSTEAL_DATA_DIR) + "/models/teapot.fsm"); }
+
+// Patch edge e (0: v=0, 1: u=1, 2: v=1, 3: u=0) as its control points.
+std::vector<glm::dvec3> edge_controls(const ts::BezierPatch& p, int e) {
+  std::vector<glm::dvec3> out;
+  const int n = (e % 2 == 0) ? p.degree_u : p.degree_v;
+  for (int k = 0; k <= n; ++k) {
+    if (e == 0) out.push_back(p.point(k, 0));
+    if (e == 1) out.push_back(p.point(p.degree_u, k));
+    if (e == 2) out.push_back(p.point(k, p.degree_v));
+    if (e == 3) out.push_back(p.point(0, k));
+  }
+  return out;
+}
+
+// Grid vertices of edge e from an untrimmed tessellation with `steps`.
+std::vector<glm::dvec3> edge_vertices(const ts::TriangleBuffers& b, ts::StepSizes steps, int e) {
+  std::vector<glm::dvec3> out;
+  const int n = (e % 2 == 0) ? steps.n_u : steps.n_v;
+  const auto at = [&](int i, int j) { return glm::dvec3(b.positions[static_cast<std::size_t>(i * (steps.n_v + 1) + j)]); };
+  for (int k = 0; k <= n; ++k) {
+    if (e == 0) out.push_back(at(k, 0));
+    if (e == 1) out.push_back(at(steps.n_u, k));
+    if (e == 2) out.push_back(at(k, steps.n_v));
+    if (e == 3) out.push_back(at(0, k));
+  }
+  return out;
+}
+
+// Over all pairs of teapot patch edges with equal control points (forward or reversed), the largest distance
+// between matching boundary vertices, with patch k tessellated at steps_of(k).
+double worst_seam_gap(const ts::Model& m, const std::function<ts::StepSizes(std::size_t)>& steps_of, int* shared_edges) {
+  std::vector<ts::TriangleBuffers> buffers(m.surfaces.size());
+  std::vector<ts::BernsteinTable> basis;
+  for (std::size_t k = 0; k < m.surfaces.size(); ++k) ts::tessellate_untrimmed(m.surfaces[k].patch, steps_of(k), buffers[k], basis);
+  double worst = 0;
+  *shared_edges = 0;
+  for (std::size_t a = 0; a < m.surfaces.size(); ++a) {
+    for (std::size_t b = a + 1; b < m.surfaces.size(); ++b) {
+      for (int ea = 0; ea < 4; ++ea) {
+        for (int eb = 0; eb < 4; ++eb) {
+          const auto ca = edge_controls(m.surfaces[a].patch, ea), cb = edge_controls(m.surfaces[b].patch, eb);
+          if (ca.size() != cb.size()) continue;
+          const bool forward = std::equal(ca.begin(), ca.end(), cb.begin(), [](auto x, auto y) { return glm::length(x - y) < 1e-9; });
+          const bool backward = std::equal(ca.begin(), ca.end(), cb.rbegin(), [](auto x, auto y) { return glm::length(x - y) < 1e-9; });
+          if (!forward && !backward) continue;
+          if (glm::length(ca.front() - ca.back()) < 1e-9 && glm::length(ca[1] - ca[0]) < 1e-9) continue;  // collapsed edge
+          ++*shared_edges;
+          auto va = edge_vertices(buffers[a], steps_of(a), ea), vb = edge_vertices(buffers[b], steps_of(b), eb);
+          if (backward) std::reverse(vb.begin(), vb.end());
+          // Every vertex on one side must have a vertex on the other side at the same place.
+          for (const glm::dvec3& p : va) {
+            double nearest = 1e30;
+            for (const glm::dvec3& q : vb) nearest = std::min(nearest, glm::length(p - q));
+            worst = std::max(worst, nearest);
+          }
+        }
+      }
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("teapot: adjacent untrimmed patches with equal steps share their boundary vertices", "[tessellate]") {
+  const ts::Model m = teapot();
+  REQUIRE(m.surfaces.size() == 32);
+  int shared = 0;
+  const double gap = worst_seam_gap(m, [](std::size_t) { return ts::StepSizes{7, 7}; }, &shared);
+  INFO(shared << " shared edges, worst gap " << gap);
+  CHECK(shared >= 40);
+  CHECK(gap < 1e-5);  // float vertex positions
+  // Negative control: unequal step counts across a seam leave vertices with no partner (a crack).
+  const double cracked = worst_seam_gap(m, [](std::size_t k) { return ts::StepSizes{k % 2 ? 7 : 8, k % 2 ? 7 : 8}; }, &shared);
+  CHECK(cracked > 1e-3);
+}
+
+TEST_CASE("components from adjacency: patches sharing edges join, others stay apart", "[tessellate]") {
+  ts::Model m;
+  for (int k = 0; k < 3; ++k) {
+    ts::Surface s{"plate" + std::to_string(k), flat_plate(1.0), {}, -1, false};
+    const glm::dvec3 shift = k < 2 ? glm::dvec3(k, 0, 0) : glm::dvec3(5, 5, 0);  // 0 and 1 share the edge x = 1
+    for (glm::dvec4& h : s.patch.control) h += glm::dvec4(shift, 0.0);
+    m.surfaces.push_back(s);
+  }
+  CHECK(ts::assign_components(m, 1e-6) == 2);
+  CHECK(m.surfaces[0].component == m.surfaces[1].component);
+  CHECK(m.surfaces[2].component != m.surfaces[0].component);
+  // The teapot: its body is one piece; the handle and the spout pierce the body without sharing an edge.
+  ts::Model pot = teapot();
+  const int n = ts::assign_components(pot, 1e-6);
+  std::map<std::string, std::set<int>> by_part;
+  for (const ts::Surface& s : pot.surfaces) by_part[s.name.substr(0, s.name.find('_'))].insert(s.component);
+  INFO(n << " components");
+  CHECK(by_part["handle"].size() == 1);
+  CHECK(by_part["spout"].size() == 1);
+  CHECK(*by_part["handle"].begin() != *by_part["spout"].begin());
+  CHECK(*by_part["body"].begin() == *by_part["rim"].begin());
+}
+
+TEST_CASE("steady-state frames reuse their buffers; OBJ and PLY export", "[tessellate]") {
+  const ts::Model m = teapot();
+  std::vector<ts::PreparedSurface> prepared;
+  for (const ts::Surface& s : m.surfaces) prepared.push_back(ts::prepare_surface(s));
+  ts::Camera cam;
+  cam.eye = {8, -6, 5};
+  cam.target = {0, 0, 1.5};
+  std::vector<ts::TriangleBuffers> buffers(m.surfaces.size());
+  ts::TessellationScratch scratch;
+  ts::TessellationSettings settings;
+  const auto frame = [&] {
+    for (std::size_t k = 0; k < prepared.size(); ++k) ts::tessellate_surface(prepared[k], cam, ts::Frustum::of(cam), settings, scratch, buffers[k]);
+  };
+  frame();
+  std::vector<const void*> before;
+  for (const auto& b : buffers) before.push_back(b.positions.data());
+  frame();
+  for (std::size_t k = 0; k < buffers.size(); ++k) CHECK(buffers[k].positions.data() == before[k]);
+
+  std::vector<ts::MeshPart> parts;
+  std::size_t triangles = 0, vertices = 0;
+  for (std::size_t k = 0; k < buffers.size(); ++k) {
+    parts.push_back({m.surfaces[k].name, &buffers[k]});
+    triangles += buffers[k].triangle_count();
+    vertices += buffers[k].positions.size();
+  }
+  std::ostringstream obj, ply;
+  ts::write_obj(obj, parts);
+  ts::write_ply(ply, parts);
+  const std::string o = obj.str(), p = ply.str();
+  std::size_t faces = 0;
+  for (std::size_t at = o.find("\nf "); at != std::string::npos; at = o.find("\nf ", at + 1)) ++faces;
+  CHECK(faces == triangles);
+  CHECK(p.find("element vertex " + std::to_string(vertices)) != std::string::npos);
+  CHECK(p.find("element face " + std::to_string(triangles)) != std::string::npos);
+  const std::size_t header = p.find("end_header\n") + 11;
+  CHECK(p.size() - header == vertices * 32 + triangles * 17);
+  CHECK_THROWS_WITH(ts::write_mesh_file("/tmp/frontsteal-test.stl", parts), Catch::Contains(".obj or .ply"));
+}
