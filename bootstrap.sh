@@ -17,6 +17,14 @@ packages=(
   libtsan2
   # vector and matrix math for the tessellation workload (tessellate/)
   libglm-dev
+  # the GLU NURBS tessellator: the reference in tessellate/benchmarks/glu_reference_benchmark
+  libglu1-mesa-dev
+  # the parser's fuzz target (tessellate/fuzz/, `cmake --workflow --preset fuzz`)
+  clang-14 libclang-rt-14-dev
+  # the CAD importer frontsteal-import (tessellate/occt_import.cpp): Open CASCADE 7.6 (OCCT's CMake targets
+  # also name libtbb.so), and the real STEP/IGES/BREP files its test reads (never committed)
+  libocct-data-exchange-dev libocct-modeling-algorithms-dev libtbb-dev
+  occt-misc calculix-cgx-examples gmsh-doc
 )
 
 missing=()

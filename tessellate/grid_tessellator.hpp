@@ -83,6 +83,15 @@ inline void tessellate_untrimmed(const BezierPatch& patch, StepSizes steps, Tria
   v_basis_scratch.resize(static_cast<std::size_t>(nv + 1));
   for (int j = 0; j <= nv; ++j) v_basis_scratch[j] = bernstein(patch.degree_v, static_cast<double>(j) / nv);
   RowCurve row;
+  // Sized once (capacity kept across frames), then written in place: no per-element growth checks.
+  const std::size_t vertices = static_cast<std::size_t>((nu + 1) * (nv + 1));
+  out.positions.resize(vertices);
+  out.normals.resize(vertices);
+  out.uvs.resize(vertices);
+  out.indices.resize(static_cast<std::size_t>(6 * nu * nv));
+  glm::vec3* position = out.positions.data();
+  glm::vec3* normal = out.normals.data();
+  glm::vec2* uv = out.uvs.data();
   // Vertices, row by row along u.
   for (int i = 0; i <= nu; ++i) {
     const double u = static_cast<double>(i) / nu;
@@ -90,17 +99,22 @@ inline void tessellate_untrimmed(const BezierPatch& patch, StepSizes steps, Tria
     for (int j = 0; j <= nv; ++j) {
       const double v = static_cast<double>(j) / nv;
       SurfacePoint sp = row.at(patch.degree_v, v_basis_scratch[j]);
-      if (sp.normal == glm::dvec3(0.0)) sp.normal = evaluate(patch, u, v).normal;  // collapsed edge
-      out.add_vertex(sp, u, v);
+      if (sp.normal == glm::dvec3(0.0)) [[unlikely]] sp.normal = evaluate(patch, u, v).normal;  // collapsed edge
+      *position++ = glm::vec3(sp.position);
+      *normal++ = glm::vec3(sp.normal);
+      *uv++ = glm::vec2(static_cast<float>(u), static_cast<float>(v));
     }
   }
   // Two triangles per cell, counter-clockwise seen from the side the normal S_u × S_v points to.
-  const auto at = [nv](int i, int j) { return static_cast<std::uint32_t>(i * (nv + 1) + j); };
-  out.indices.reserve(static_cast<std::size_t>(6 * nu * nv));
+  std::uint32_t* index = out.indices.data();
   for (int i = 0; i < nu; ++i) {
+    const std::uint32_t row0 = static_cast<std::uint32_t>(i * (nv + 1));
+    const std::uint32_t row1 = row0 + static_cast<std::uint32_t>(nv + 1);
     for (int j = 0; j < nv; ++j) {
-      out.indices.insert(out.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      out.indices.insert(out.indices.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+      const std::uint32_t a = row0 + j, b = row1 + j;
+      index[0] = a, index[1] = b, index[2] = b + 1;
+      index[3] = a, index[4] = b + 1, index[5] = a + 1;
+      index += 6;
     }
   }
 }
