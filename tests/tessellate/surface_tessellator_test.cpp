@@ -418,3 +418,27 @@ TEST_CASE("steady-state frames reuse their buffers; OBJ and PLY export", "[tesse
   CHECK(p.size() - header == vertices * 32 + triangles * 17);
   CHECK_THROWS_WITH(ts::write_mesh_file("/tmp/frontsteal-test.stl", parts), Catch::Contains(".obj or .ply"));
 }
+
+TEST_CASE("the cost estimate grows with screen size and trimming, and is small when culled", "[tessellate]") {
+  ts::Surface plain{"plain", flat_plate(1.0), {}, -1, false};
+  ts::Surface holed = plain;
+  holed.loops = {polyline_loop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}), circle_loop({0.5, 0.5}, 0.25, false)};
+  const ts::PreparedSurface p_plain = ts::prepare_surface(plain), p_holed = ts::prepare_surface(holed);
+  ts::TessellationSettings settings;
+  const auto cost_from = [&](const ts::PreparedSurface& p, double height) {
+    ts::Camera cam;
+    cam.eye = {0.5, 0.5, height};
+    cam.target = {0.5, 0.5, 0.0};
+    cam.up = {0, 1, 0};
+    return ts::estimate_cost(p, ts::plan_surface(p, cam, ts::Frustum::of(cam), settings), settings);
+  };
+  CHECK(cost_from(p_plain, 0.8) > cost_from(p_plain, 8.0));  // closer: larger on screen, more steps
+  CHECK(cost_from(p_holed, 2.0) > cost_from(p_plain, 2.0));  // trim work adds to the grid's
+  ts::Camera away;
+  away.eye = {0.5, 0.5, 2.0};
+  away.target = {0.5, 0.5, 4.0};  // looking away: frustum-culled
+  away.up = {0, 1, 0};
+  const ts::SurfacePlan culled = ts::plan_surface(p_plain, away, ts::Frustum::of(away), settings);
+  CHECK(culled.culled == ts::Culled::frustum);
+  CHECK(ts::estimate_cost(p_plain, culled, settings) < 0.1 * cost_from(p_plain, 2.0));
+}
