@@ -25,6 +25,9 @@ packages=(
   # also name libtbb.so), and the real STEP/IGES/BREP files its test reads (never committed)
   libocct-data-exchange-dev libocct-modeling-algorithms-dev libtbb-dev
   occt-misc calculix-cgx-examples gmsh-doc
+  # the main job's plots (schedulers/frontsteal_main.cpp writes a gnuplot script and runs it); oneTBB is
+  # listed above (libtbb-dev), OpenMP comes with g++ (libgomp)
+  gnuplot-nox
 )
 
 missing=()

@@ -16,7 +16,10 @@ struct WorkerFrameStats {
   std::uint64_t steals_succeeded = 0;    // ... that yielded a non-empty share
   std::uint64_t items_stolen = 0;        // items in the shares kept
   std::uint64_t items_skipped = 0;       // items dropped after the re-read of Front (the victim's claims)
-  std::int64_t busy_ns = 0;              // time inside the owner loop (claiming and processing)
+  std::uint64_t lock_waits = 0;          // contended acquisitions of a shared lock (schedulers/ global queue)
+  std::int64_t lock_wait_ns = 0;         // ... and the time spent waiting for it
+  std::int64_t busy_ns = 0;              // time inside the owner loop (claiming and processing); other
+                                         // schedulers: time processing the items of each claim
   std::int64_t idle_ns = 0;              // the rest of the worker's frame: stealing and waiting for the end
 
   WorkerFrameStats& operator+=(const WorkerFrameStats& o) {
@@ -28,6 +31,8 @@ struct WorkerFrameStats {
     steals_succeeded += o.steals_succeeded;
     items_stolen += o.items_stolen;
     items_skipped += o.items_skipped;
+    lock_waits += o.lock_waits;
+    lock_wait_ns += o.lock_wait_ns;
     busy_ns += o.busy_ns;
     idle_ns += o.idle_ns;
     return *this;

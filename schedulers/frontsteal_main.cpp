@@ -1,19 +1,25 @@
-// frontsteal — the main job: load stealing per memory-order policy on a synthetic skewed workload.
+// frontsteal — the main job: every scheduler on the real tessellation workload, side by side.
 //
-// Each frame runs N items whose costs follow a moving "zoom": a window of N/10 items costs 40x the rest and
-// slides across the ids from frame to frame, so the static block allocation is badly imbalanced and the
-// previous frame's lists are a good but imperfect guess (paper §3, §4.2.1). Every item is audited: lost and
-// duplicated runs are counted per policy.
+// A scene (default: the generated 15,906-surface plant, the size of the paper's largest Fig. 8 model) is
+// tessellated along a deterministic camera path — half an orbit of the whole model, half a zoom into a small
+// corner region, where round robin becomes badly imbalanced (paper §3) — by a serial loop (T1) and by every
+// scheduler at P = 1 … cores and oversubscribed. Repeats are interleaved (repeat r of every scheduler runs
+// before repeat r+1 of any), so slow drifts of a noisy machine spread over all of them. Every frame is
+// audited: each surface ran exactly once, and the frame's triangle count equals the serial loop's.
 #include <algorithm>
-#include <charconv>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
-#include <optional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -21,12 +27,22 @@
 
 #include "core/cli_args.hpp"
 #include "core/execution_counter.hpp"
-#include "core/membarrier.hpp"
-#include "core/policies.hpp"
-#include "core/stealing_scheduler.hpp"
-#include "core/synthetic_work.hpp"
+#include "schedulers/registry.hpp"
+#include "schedulers/static_assignment.hpp"
+#include "tessellate/camera_path.hpp"
+#include "tessellate/scene_generator.hpp"
+#include "tessellate/surface_tessellator.hpp"
+
+#ifndef FRONTSTEAL_GIT_COMMIT
+#define FRONTSTEAL_GIT_COMMIT "unknown"
+#endif
+#ifndef FRONTSTEAL_DATA_DIR
+#define FRONTSTEAL_DATA_DIR "data"
+#endif
 
 namespace fs = frontsteal;
+namespace sc = frontsteal::sched;
+namespace ts = frontsteal::tess;
 
 namespace {
 
@@ -41,219 +57,563 @@ T parse_number(std::string_view flag, std::string_view text, T min_value, T max_
 
 constexpr std::string_view kUsage = R"(usage: frontsteal [options]
 
-Runs the load-stealing protocol of Kumar, Chang & Manocha (SC'96, §4.2) on persistent worker threads over
-a synthetic skewed workload (a hot window of items, 40x costlier, sliding across the ids every frame), once
-per memory-order policy. Prints, per policy and worker, items processed, steals and items skipped after the
-re-read of Front, audits every item (lost / duplicated), and writes the results as JSON.
+Tessellates a scene along a deterministic camera path (an orbit of the whole model, then a zoom into a small
+corner region: the case where round robin becomes imbalanced, paper §3) with a serial loop and with every
+scheduler at P = 1 ... cores and oversubscribed (2 x cores), measured side by side in one run. Shows progress,
+prints a table (frames/s, speed-up over the serial loop, % of ideal T1/P, utilization = busy / (wall x P),
+imbalance = max/mean busy, steals, lock waits) and writes JSON, CSV, markdown and PNG plots (gnuplot).
+Every frame is audited: each surface tessellated exactly once, triangle count equal to the serial loop's.
 
 options:
-  --policy NAME    all | SeqCst | Paper | Fenced | Minimal | Asymmetric  (default: all)
-  --workers P      worker threads                                  (default: hardware threads)
-  --items N        items per frame                                 (default: 5302, the paper's smallest Fig. 8 model)
-  --frames F       frames per policy                               (default: 60)
-  --cost-ns C      approximate cost of a cold item in nanoseconds  (default: 400)
-  --seed S         victim-order seed                               (default: 1)
-  --json PATH      results file                                    (default: out/frontsteal-demo.json)
-  --quiet          no progress lines
-  --help           this text
+  --scene S         teapot | teacup | teaspoon | plant:N[:seed] | path to a model file  (default plant:15906)
+  --schedulers L    comma-separated scheduler names, or all                 (default all; see --list)
+  --threads L       comma-separated worker counts P          (default 1..cores, then 2 x cores)
+  --frames F        frames along the path, half orbit and half zoom                  (default 24)
+  --repeats R       runs of the path per scheduler and P; medians are reported       (default 5)
+  --tolerance PX    screen-space tolerance in pixels                                 (default 1)
+  --grain G         items per claim of the chunked schedulers (queue, counter, Chase-Lev, TBB, OpenMP)
+                    (default: each scheduler's own: N/(100P) for queue and counter, 1 for the others)
+  --size WxH        image size the steps are computed for                     (default 1280x720)
+  --seed S          seed of victim orders and of the annealing                        (default 1)
+  --out DIR         results directory                                               (default out)
+  --no-plot         do not run gnuplot (the .gp scripts are still written)
+  --list            list the schedulers and exit
+  --quiet           no progress lines
+  --help            this text
 
-Policies: SeqCst, Fenced, Minimal (the weakest orders the model checker certifies) and Asymmetric are
-exactly-once; Paper (no StoreLoad fence at the ListTransient
-handshake) is at-least-once: an item may run twice, never zero times. Asymmetric needs Linux membarrier;
-where it is unavailable the run says so and uses Fenced in its place.
+Outputs in DIR: frontsteal.json (everything, per frame), frontsteal.csv and frontsteal.md (the table),
+frontsteal-speedup.png (speed-up against P), frontsteal-frames.png (frame time along the path).
+All figures are measured on this machine; none are simulated.
 )";
 
 struct Options {
-  std::string policy = "all";
-  fs::WorkerId workers = std::max(1u, std::thread::hardware_concurrency());
-  fs::ItemId items = 5302;
-  std::uint32_t frames = 60;
-  std::uint32_t cost_ns = 400;
+  std::string scene = "plant:15906";
+  std::vector<std::string> schedulers;  // empty: all exactly-once ones
+  std::vector<fs::WorkerId> threads;
+  int frames = 24;
+  int repeats = 5;
+  double tolerance = 1.0;
+  fs::ItemId grain = 0;
+  int width = 1280, height = 720;
   std::uint64_t seed = 1;
-  std::string json = "out/frontsteal-demo.json";
+  std::string out = "out";
+  bool plot = true;
   bool quiet = false;
 };
+
+unsigned hardware_cores() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 Options parse(int argc, char** argv) {
   Options o;
   fs::cli::ArgReader args(argc, argv, kProgram, kUsage);
   while (args.next()) {
-    const std::string_view arg = args.flag();
-    auto value = [&] { return args.value(); };
-    if (arg == "--policy") {
-      o.policy = value();
-      if (o.policy != "all" && o.policy != "SeqCst" && o.policy != "Paper" && o.policy != "Fenced" &&
-          o.policy != "Minimal" && o.policy != "Asymmetric") {
-        usage_error("unknown policy '" + o.policy + "' (all, SeqCst, Paper, Fenced, Minimal, Asymmetric)");
+    const std::string_view a = args.flag();
+    if (a == "--list") {
+      for (const auto& s : sc::scheduler_registry()) {
+        std::cout << std::left << std::setw(22) << s.name << s.summary
+                  << (s.contract == fs::Contract::kAtLeastOnce ? "  [at-least-once: not run on tessellation]" : "")
+                  << '\n';
       }
-    } else if (arg == "--workers") {
-      o.workers = parse_number<fs::WorkerId>(arg, value(), 1, 1024);
-    } else if (arg == "--items") {
-      o.items = parse_number<fs::ItemId>(arg, value(), 0, 50'000'000);
-    } else if (arg == "--frames") {
-      o.frames = parse_number<std::uint32_t>(arg, value(), 1, 10'000'000);
-    } else if (arg == "--cost-ns") {
-      o.cost_ns = parse_number<std::uint32_t>(arg, value(), 0, 10'000'000);
-    } else if (arg == "--seed") {
-      o.seed = parse_number<std::uint64_t>(arg, value(), 0, UINT64_MAX);
-    } else if (arg == "--json") {
-      o.json = value();
-    } else if (arg == "--quiet") {
+      std::exit(0);
+    } else if (a == "--scene") {
+      o.scene = args.value();
+    } else if (a == "--schedulers") {
+      o.schedulers = fs::cli::split_list(args.value());
+    } else if (a == "--threads") {
+      o.threads.clear();
+      for (const auto& t : fs::cli::split_list(args.value())) {
+        o.threads.push_back(parse_number<fs::WorkerId>("--threads", t, 1, 1024));
+      }
+    } else if (a == "--frames") {
+      o.frames = parse_number<int>(a, args.value(), 1, 100000);
+    } else if (a == "--repeats") {
+      o.repeats = parse_number<int>(a, args.value(), 1, 1000);
+    } else if (a == "--tolerance") {
+      o.tolerance = parse_number<double>(a, args.value(), 0.01, 1000.0);
+    } else if (a == "--grain") {
+      o.grain = parse_number<fs::ItemId>(a, args.value(), 1, std::numeric_limits<fs::ItemId>::max());
+    } else if (a == "--size") {
+      const std::string v(args.value());
+      const auto x = v.find('x');
+      if (x == std::string::npos) usage_error("--size expects WxH, e.g. 1280x720, got '" + v + "'");
+      o.width = parse_number<int>("--size", std::string_view(v).substr(0, x), 16, 16384);
+      o.height = parse_number<int>("--size", std::string_view(v).substr(x + 1), 16, 16384);
+    } else if (a == "--seed") {
+      o.seed = parse_number<std::uint64_t>(a, args.value(), 0, std::numeric_limits<std::uint64_t>::max());
+    } else if (a == "--out") {
+      o.out = args.value();
+    } else if (a == "--no-plot") {
+      o.plot = false;
+    } else if (a == "--quiet") {
       o.quiet = true;
     } else {
-      usage_error("unknown option '" + std::string(arg) + "'");
+      usage_error("unknown option '" + std::string(a) + "'");
     }
   }
+  if (o.threads.empty()) {
+    for (unsigned p = 1; p <= hardware_cores(); ++p) o.threads.push_back(p);
+    o.threads.push_back(2 * hardware_cores());
+  }
+  std::vector<std::string> wanted;
+  if (o.schedulers.empty() || (o.schedulers.size() == 1 && o.schedulers[0] == "all")) {
+    for (const auto& s : sc::scheduler_registry()) {
+      if (s.contract == fs::Contract::kExactlyOnce) wanted.push_back(s.name);
+    }
+  } else {
+    for (const auto& name : o.schedulers) {
+      const sc::SchedulerInfo* s = sc::find_scheduler(name);
+      if (!s) usage_error("unknown scheduler '" + name + "' (see --list)");
+      if (s->contract != fs::Contract::kExactlyOnce) {
+        usage_error(name + " is at-least-once: a duplicated surface would be tessellated into its buffer by two "
+                           "threads at once; the main job runs exactly-once schedulers only");
+      }
+      wanted.push_back(name);
+    }
+  }
+  o.schedulers = wanted;
   return o;
 }
 
-std::uint32_t item_cost(fs::ItemId id, fs::ItemId n, std::uint32_t frame, std::uint32_t cold) {
-  if (n == 0) return 0;
-  const fs::ItemId hot_begin = static_cast<fs::ItemId>((std::uint64_t{frame} * n / 37) % n);
-  return id - hot_begin < n / 10 + 1 ? cold * 40 : cold;
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+    }
+  }
+  return "unknown CPU";
 }
 
-struct PolicyResult {
-  std::string name;
-  std::string contract;
-  std::string note;  // e.g. a fallback
-  std::vector<fs::WorkerFrameStats> per_worker;  // summed over frames
-  std::vector<double> frame_ms;
-  std::uint64_t lost = 0;
-  std::uint64_t duplicated = 0;
-  std::uint64_t frames_with_duplicates = 0;
-  double median_ms() const {
-    std::vector<double> v = frame_ms;
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) continue;
+    out += c;
   }
+  return out;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// The workload: the scene prepared once, its per-frame views, and one output buffer per surface.
+struct Workload {
+  ts::Model model;
+  std::vector<ts::PreparedSurface> prepared;
+  std::vector<ts::TriangleBuffers> buffers;  // per surface: every scheduler writes the same buffers
+  std::vector<ts::Camera> cameras;
+  std::vector<ts::Frustum> frusta;
+  ts::TessellationSettings settings;
+  std::vector<std::uint64_t> serial_triangles;  // per frame, from the serial loop: the reference
 };
 
-template <class Policy>
-PolicyResult run_policy(const Options& o, std::string note = {}) {
-  PolicyResult r;
-  r.name = std::string(Policy::kName);
-  r.contract = std::string(fs::name(Policy::kContract));
-  r.note = std::move(note);
-  fs::StealingScheduler<Policy> scheduler({.workers = o.workers, .items = o.items, .seed = o.seed});
-  fs::ExecutionCounter runs(o.items);
-  r.per_worker.assign(o.workers, {});
-  const auto started = std::chrono::steady_clock::now();
-  for (std::uint32_t f = 1; f <= o.frames; ++f) {
-    const auto& st = scheduler.run_frame([&](fs::ItemId id, fs::WorkerId) {
-      runs.record(id);
-      fs::spin_work(item_cost(id, o.items, f, o.cost_ns));
-    });
-    const fs::ExecutionAudit audit = runs.audit_and_reset();
-    r.lost += audit.lost;
-    r.duplicated += audit.duplicated;
-    if (audit.duplicated > 0) ++r.frames_with_duplicates;
-    for (fs::WorkerId w = 0; w < o.workers; ++w) r.per_worker[w] += st.workers[w];
-    r.frame_ms.push_back(st.wall_ns / 1e6);
-    const double since_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    if (!o.quiet && (f == o.frames || f % 20 == 0)) {
-      std::fprintf(stderr, "  %-10s frame %u/%u  (%.1f s)\n", r.name.c_str(), f, o.frames, since_s);
-    }
-  }
-  return r;
-}
+// One scheduler at one P: what the interleaved repeats gathered.
+struct Cell {
+  std::string scheduler;
+  fs::WorkerId workers = 0;
+  std::unique_ptr<sc::Scheduler> instance;
+  double setup_ms = 0;                             // construction (annealing included)
+  std::vector<double> path_ms;                     // per repeat
+  std::vector<std::vector<double>> frame_ms;       // [repeat][frame]
+  fs::WorkerFrameStats totals;                     // summed over every frame of every repeat
+  double busy_over_available = 0, available = 0;   // Σ busy, Σ wall × P (ns)
+  double imbalance_sum = 0, imbalance_max = 0;
+  std::uint64_t frames_run = 0;
+  std::uint64_t audit_failures = 0, triangle_mismatches = 0;
+  std::string first_problem;
+};
 
-void print_result(const PolicyResult& r, const Options& o) {
-  std::int64_t busy = 0;
-  for (const auto& w : r.per_worker) busy += w.busy_ns;
-  double wall_ns = 0;
-  for (double ms : r.frame_ms) wall_ns += ms * 1e6;
-  std::printf("\n== %s (%s)%s%s\n", r.name.c_str(), r.contract.c_str(), r.note.empty() ? "" : ": ", r.note.c_str());
-  std::printf("median frame %.3f ms   utilization %.1f%%   lost %llu   duplicated %llu (in %llu of %u frames)\n",
-              r.median_ms(), wall_ns > 0 ? 100.0 * busy / (wall_ns * o.workers) : 0.0,
-              static_cast<unsigned long long>(r.lost), static_cast<unsigned long long>(r.duplicated),
-              static_cast<unsigned long long>(r.frames_with_duplicates), o.frames);
-  std::printf("%6s %12s %10s %10s %12s %12s %8s\n", "worker", "items", "steals", "attempts", "items stolen",
-              "items skipped", "busy");
-  for (std::size_t w = 0; w < r.per_worker.size(); ++w) {
-    const auto& s = r.per_worker[w];
-    std::printf("%6zu %12llu %10llu %10llu %12llu %12llu %7.1f%%\n", w,
-                static_cast<unsigned long long>(s.items_processed), static_cast<unsigned long long>(s.steals_succeeded),
-                static_cast<unsigned long long>(s.steal_attempts), static_cast<unsigned long long>(s.items_stolen),
-                static_cast<unsigned long long>(s.items_skipped), wall_ns > 0 ? 100.0 * s.busy_ns / wall_ns : 0.0);
+class Progress {
+ public:
+  Progress(bool quiet, std::size_t total) : quiet_(quiet), total_(total), start_(std::chrono::steady_clock::now()) {}
+  void step(const std::string& what) {
+    ++done_;
+    if (quiet_) return;
+    const double elapsed = seconds();
+    const double eta = done_ ? elapsed / done_ * (total_ - done_) : 0;
+    std::fprintf(stderr, "[%3zu/%zu %5.0fs, ~%.0fs left] %s\n", done_, total_, elapsed, eta, what.c_str());
   }
-}
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
 
-void write_json(const std::vector<PolicyResult>& results, const Options& o) {
-  const std::filesystem::path path(o.json);
-  if (path.has_parent_path()) {
-    std::error_code ec;
-    std::filesystem::create_directories(path.parent_path(), ec);
-    if (ec) {
-      std::cerr << "frontsteal: cannot create " << path.parent_path() << ": " << ec.message() << "\n";
-      std::exit(1);
-    }
-  }
-  std::ofstream out(path);
-  if (!out) {
-    std::cerr << "frontsteal: cannot write " << path << ": " << std::strerror(errno) << "\n";
-    std::exit(1);
-  }
-  out << "{\n  \"kind\": \"measured\",\n  \"workload\": \"synthetic skewed (sliding hot window, 40x)\",\n"
-      << "  \"workers\": " << o.workers << ", \"items\": " << o.items << ", \"frames\": " << o.frames
-      << ", \"cost_ns\": " << o.cost_ns << ", \"seed\": " << o.seed
-      << ", \"hardware_threads\": " << std::thread::hardware_concurrency() << ",\n  \"policies\": [\n";
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    const auto& r = results[i];
-    out << "    {\"policy\": \"" << r.name << "\", \"contract\": \"" << r.contract << "\", \"note\": \"" << r.note
-        << "\", \"median_frame_ms\": " << r.median_ms() << ", \"lost\": " << r.lost
-        << ", \"duplicated\": " << r.duplicated << ", \"frames_with_duplicates\": " << r.frames_with_duplicates
-        << ",\n     \"workers\": [";
-    for (std::size_t w = 0; w < r.per_worker.size(); ++w) {
-      const auto& s = r.per_worker[w];
-      out << (w ? ", " : "") << "{\"items\": " << s.items_processed << ", \"steals\": " << s.steals_succeeded
-          << ", \"steal_attempts\": " << s.steal_attempts << ", \"items_stolen\": " << s.items_stolen
-          << ", \"items_skipped\": " << s.items_skipped << ", \"busy_ns\": " << s.busy_ns
-          << ", \"idle_ns\": " << s.idle_ns << "}";
-    }
-    out << "],\n     \"frame_ms\": [";
-    for (std::size_t f = 0; f < r.frame_ms.size(); ++f) out << (f ? ", " : "") << r.frame_ms[f];
-    out << "]}" << (i + 1 < results.size() ? "," : "") << "\n";
-  }
-  out << "  ]\n}\n";
-  std::printf("\nresults written to %s\n", o.json.c_str());
+ private:
+  bool quiet_;
+  std::size_t total_, done_ = 0;
+  std::chrono::steady_clock::time_point start_;
+};
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  std::printf("frontsteal: load stealing, %u workers (%u hardware threads), %u items, %u frames per policy\n",
-              o.workers, std::thread::hardware_concurrency(), o.items, o.frames);
-  std::vector<PolicyResult> results;
-  auto wanted = [&](std::string_view name) { return o.policy == "all" || o.policy == name; };
+  const unsigned cores = hardware_cores();
+
+  // ---- the workload -------------------------------------------------------------------------------------
+  Workload wl;
+  const auto load_start = std::chrono::steady_clock::now();
   try {
-    if (wanted("SeqCst")) results.push_back(run_policy<fs::SeqCst>(o));
-    if (wanted("Paper")) results.push_back(run_policy<fs::Paper>(o));
-    if (wanted("Fenced")) results.push_back(run_policy<fs::Fenced>(o));
-    if (wanted("Minimal")) results.push_back(run_policy<fs::Minimal>(o));
-    if (wanted("Asymmetric")) {
-      if (fs::membarrier_status().available) {
-        results.push_back(run_policy<fs::Asymmetric>(o));
-      } else {
-        const std::string note = "Asymmetric unavailable (" + fs::membarrier_status().detail + "): ran Fenced instead";
-        std::fprintf(stderr, "frontsteal: %s\n", note.c_str());
-        results.push_back(run_policy<fs::Fenced>(o, note));
+    wl.model = ts::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
+  } catch (const std::exception& e) {
+    std::cerr << kProgram << ": cannot load scene '" << o.scene << "': " << e.what() << '\n';
+    return 2;
+  }
+  const auto n = static_cast<fs::ItemId>(wl.model.surfaces.size());
+  if (n == 0) {
+    std::cerr << kProgram << ": scene '" << o.scene << "' has no surfaces\n";
+    return 2;
+  }
+  for (const ts::Surface& s : wl.model.surfaces) wl.prepared.push_back(ts::prepare_surface(s));
+  wl.buffers.resize(n);
+  wl.settings.pixel_tolerance = o.tolerance;
+  const ts::Box box = ts::model_box(wl.model);
+  for (int f = 0; f < o.frames; ++f) {
+    wl.cameras.push_back(ts::camera_on_path(box, f, o.frames, o.width, o.height));
+    wl.frusta.push_back(ts::Frustum::of(wl.cameras.back()));
+  }
+  // Hints for the spatial partitions: patch centres, and the cost estimate of the path's first (overview) view.
+  sc::WorkloadHints hints;
+  {
+    const ts::TessellationSettings& st = wl.settings;
+    for (const ts::PreparedSurface& p : wl.prepared) {
+      const glm::dvec3 c = p.box.centre();
+      hints.centres.push_back({c.x, c.y, c.z});
+      const ts::SurfacePlan plan = ts::plan_surface(p, wl.cameras[0], wl.frusta[0], st);
+      hints.costs.push_back(std::max(1.0, ts::estimate_cost(p, plan, st)));
+    }
+  }
+  const double load_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+  if (!o.quiet) {
+    std::fprintf(stderr, "frontsteal: scene %s: %u surfaces, %d frames (orbit then zoom), %s, %u hardware threads; "
+                 "prepared in %.2f s\n", o.scene.c_str(), n, o.frames, cpu_model().c_str(), cores, load_s);
+  }
+
+  // Tessellates surface `id` for frame `f`, with worker w's scratch; returns its triangle count.
+  std::vector<ts::TessellationScratch> scratch(
+      std::max<std::size_t>(1, *std::max_element(o.threads.begin(), o.threads.end())));
+  std::vector<std::uint32_t> triangles(n, 0);
+  auto tessellate = [&](int f, fs::ItemId id, fs::WorkerId w) {
+    const ts::SurfaceResult r = ts::tessellate_surface(wl.prepared[id], wl.cameras[f], wl.frusta[f], wl.settings,
+                                                       scratch[w], wl.buffers[id]);
+    triangles[id] = static_cast<std::uint32_t>(r.triangles);
+  };
+  auto frame_triangles = [&] {
+    std::uint64_t t = 0;
+    for (auto x : triangles) t += x;
+    return t;
+  };
+
+  const std::size_t total_steps =
+      1 + static_cast<std::size_t>(o.repeats) * (1 + o.threads.size() * o.schedulers.size());
+  Progress progress(o.quiet, total_steps);
+
+  // ---- the serial reference (T1): a plain loop on this thread ---------------------------------------------
+  std::vector<double> serial_path_ms;
+  std::vector<std::vector<double>> serial_frame_ms;
+  for (int f = 0; f < o.frames; ++f) {  // warm-up pass; also the reference triangle counts
+    for (fs::ItemId id = 0; id < n; ++id) tessellate(f, id, 0);
+    wl.serial_triangles.push_back(frame_triangles());
+  }
+  progress.step("serial warm-up pass (reference triangle counts)");
+
+  // ---- the schedulers -----------------------------------------------------------------------------------
+  std::vector<Cell> cells;
+  for (fs::WorkerId p : o.threads) {
+    for (const auto& name : o.schedulers) {
+      Cell c;
+      c.scheduler = name;
+      c.workers = p;
+      cells.push_back(std::move(c));
+    }
+  }
+  fs::ExecutionCounter runs(n);
+
+  auto run_serial_path = [&] {
+    std::vector<double> per_frame;
+    double total = 0;
+    for (int f = 0; f < o.frames; ++f) {
+      const auto t0 = std::chrono::steady_clock::now();
+      for (fs::ItemId id = 0; id < n; ++id) tessellate(f, id, 0);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      per_frame.push_back(ms);
+      total += ms;
+    }
+    serial_path_ms.push_back(total);
+    serial_frame_ms.push_back(per_frame);
+  };
+
+  auto run_cell_path = [&](Cell& c) {
+    std::vector<double> per_frame;
+    double total = 0;
+    for (int f = 0; f < o.frames; ++f) {
+      auto item = [&](fs::ItemId id, fs::WorkerId w) {
+        runs.record(id);
+        tessellate(f, id, w);
+      };
+      const fs::FrameStats& st = c.instance->run_frame(item);
+      const double ms = static_cast<double>(st.wall_ns) / 1e6;
+      per_frame.push_back(ms);
+      total += ms;
+      c.totals += st.totals();
+      c.busy_over_available += static_cast<double>(st.totals().busy_ns);
+      c.available += static_cast<double>(st.wall_ns) * st.workers.size();
+      c.imbalance_sum += st.imbalance();
+      c.imbalance_max = std::max(c.imbalance_max, st.imbalance());
+      ++c.frames_run;
+      const fs::ExecutionAudit audit = runs.audit_and_reset();
+      if (!audit.exactly_once()) {
+        ++c.audit_failures;
+        if (c.first_problem.empty()) {
+          std::ostringstream s;
+          s << "frame " << f << ": " << audit;
+          c.first_problem = s.str();
+        }
+      }
+      if (frame_triangles() != wl.serial_triangles[f]) {
+        ++c.triangle_mismatches;
+        if (c.first_problem.empty()) {
+          c.first_problem = "frame " + std::to_string(f) + ": " + std::to_string(frame_triangles()) +
+                            " triangles, serial loop made " + std::to_string(wl.serial_triangles[f]);
+        }
       }
     }
-  } catch (const std::exception& e) {
-    std::cerr << "frontsteal: " << e.what() << "\n";
+    c.path_ms.push_back(total);
+    c.frame_ms.push_back(per_frame);
+  };
+
+  // Construct every cell's scheduler (static partitions computed here, timed), with one untimed warm-up frame.
+  for (Cell& c : cells) {
+    const sc::SchedulerInfo* info = sc::find_scheduler(c.scheduler);
+    sc::SchedulerConfig config{.workers = c.workers, .items = n, .grain = o.grain, .seed = o.seed};
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      c.instance = info->make(config, hints);
+    } catch (const std::exception& e) {
+      std::cerr << kProgram << ": cannot start " << c.scheduler << " with P=" << c.workers << ": " << e.what() << '\n';
+      return 1;
+    }
+    c.setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    auto warm = [&](fs::ItemId id, fs::WorkerId w) { tessellate(0, id, w); };
+    c.instance->run_frame(warm);
+  }
+
+  for (int r = 0; r < o.repeats; ++r) {
+    run_serial_path();
+    progress.step("repeat " + std::to_string(r + 1) + "/" + std::to_string(o.repeats) + " serial loop: " +
+                  fixed(serial_path_ms.back(), 0) + " ms for the path");
+    for (Cell& c : cells) {
+      try {
+        run_cell_path(c);
+      } catch (const std::exception& e) {
+        std::cerr << kProgram << ": " << c.scheduler << " P=" << c.workers << ": " << e.what() << '\n';
+        return 1;
+      }
+      // Library runtimes spin a little after a parallel region; let them settle before the next scheduler.
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      progress.step("repeat " + std::to_string(r + 1) + "/" + std::to_string(o.repeats) + " P=" +
+                    std::to_string(c.workers) + " " + c.scheduler + ": " + fixed(c.path_ms.back(), 0) + " ms (" +
+                    fixed(1000.0 * o.frames / c.path_ms.back(), 1) + " frames/s)");
+    }
+  }
+
+  // ---- results ------------------------------------------------------------------------------------------
+  const double t1_ms = median(serial_path_ms);
+  struct Row {
+    const Cell* cell;
+    double path_ms, fps, speedup, ideal_pct, utilization, imbalance_mean;
+  };
+  std::vector<Row> rows;
+  bool problems = false;
+  for (const Cell& c : cells) {
+    Row row{&c, median(c.path_ms), 0, 0, 0, 0, 0};
+    row.fps = 1000.0 * o.frames / row.path_ms;
+    row.speedup = t1_ms / row.path_ms;
+    const double ideal_ms = t1_ms / std::min<double>(c.workers, cores);
+    row.ideal_pct = 100.0 * ideal_ms / row.path_ms;
+    row.utilization = c.available > 0 ? 100.0 * c.busy_over_available / c.available : 0;
+    row.imbalance_mean = c.frames_run ? c.imbalance_sum / c.frames_run : 0;
+    rows.push_back(row);
+    if (c.audit_failures || c.triangle_mismatches) problems = true;
+  }
+
+  std::error_code ec;
+  std::filesystem::create_directories(o.out, ec);
+  if (ec) {
+    std::cerr << kProgram << ": cannot create " << o.out << ": " << ec.message() << '\n';
     return 1;
   }
-  bool contract_broken = false;
-  for (const auto& r : results) {
-    print_result(r, o);
-    if (r.lost > 0 || (r.contract == "exactly-once" && r.duplicated > 0)) contract_broken = true;
+  const std::filesystem::path dir(o.out);
+  const std::string machine = cpu_model() + ", " + std::to_string(cores) + " hardware threads";
+
+  // Table (stdout and markdown).
+  std::ostringstream table;
+  table << "| P | scheduler | frames/s | speed-up | % of ideal | utilization | imbalance | steals (failed) | lock waits | audit |\n"
+        << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+  table << "| 1 | serial loop (T1) | " << fixed(1000.0 * o.frames / t1_ms, 2) << " | 1.00 | 100.0 | - | - | - | - | - |\n";
+  for (const Row& r : rows) {
+    const Cell& c = *r.cell;
+    const std::uint64_t failed = c.totals.steal_attempts - c.totals.steals_succeeded;
+    table << "| " << c.workers << " | " << c.scheduler << " | " << fixed(r.fps, 2) << " | " << fixed(r.speedup, 2)
+          << " | " << fixed(r.ideal_pct, 1) << " | " << fixed(r.utilization, 1) << "% | " << fixed(r.imbalance_mean, 3)
+          << " | " << c.totals.steals_succeeded << " (" << failed << ") | " << c.totals.lock_waits << " | "
+          << (c.audit_failures || c.triangle_mismatches ? "FAILED" : "ok") << " |\n";
   }
-  write_json(results, o);
-  if (contract_broken) {
-    std::fprintf(stderr, "frontsteal: a policy broke its contract (see lost/duplicated above)\n");
-    return 3;
+  std::cout << "\nfrontsteal: " << o.scene << ", " << n << " surfaces, " << o.frames << " frames x " << o.repeats
+            << " repeats (medians), tolerance " << o.tolerance << " px, " << o.width << "x" << o.height << "\n"
+            << "machine: " << machine << " (measured, not simulated)\n"
+            << "ideal = T1 / min(P, " << cores << "); utilization = busy / (wall x P), summed over every frame; "
+            << "imbalance = max/mean busy per frame, averaged\n\n"
+            << table.str();
+
+  {
+    std::ofstream md(dir / "frontsteal.md");
+    md << "# frontsteal main job (measured)\n\n"
+       << "Scene `" << o.scene << "` (" << n << " surfaces), " << o.frames << " frames along the camera path (orbit, "
+       << "then zoom), " << o.repeats << " interleaved repeats (medians), tolerance " << o.tolerance << " px, "
+       << o.width << "x" << o.height << ". Machine: " << machine << ". Commit " << FRONTSTEAL_GIT_COMMIT << ".\n\n"
+       << table.str();
+  }
+  {
+    std::ofstream csv(dir / "frontsteal.csv");
+    csv << "workers,scheduler,path_ms,frames_per_s,speedup,ideal_pct,utilization_pct,imbalance_mean,imbalance_max,"
+           "steals,steal_attempts,lock_waits,lock_wait_ms,setup_ms,audit_failures,triangle_mismatches\n";
+    csv << "1,serial," << t1_ms << ',' << 1000.0 * o.frames / t1_ms << ",1,100,,,,,,,,,0,0\n";
+    for (const Row& r : rows) {
+      const Cell& c = *r.cell;
+      csv << c.workers << ',' << c.scheduler << ',' << r.path_ms << ',' << r.fps << ',' << r.speedup << ','
+          << r.ideal_pct << ',' << r.utilization << ',' << r.imbalance_mean << ',' << c.imbalance_max << ','
+          << c.totals.steals_succeeded << ',' << c.totals.steal_attempts << ',' << c.totals.lock_waits << ','
+          << c.totals.lock_wait_ns / 1e6 << ',' << c.setup_ms << ',' << c.audit_failures << ','
+          << c.triangle_mismatches << '\n';
+    }
+  }
+  {
+    std::ofstream js(dir / "frontsteal.json");
+    js << std::setprecision(6);
+    js << "{\n  \"kind\": \"measured\",\n  \"machine\": \"" << json_escape(machine) << "\",\n  \"commit\": \""
+       << FRONTSTEAL_GIT_COMMIT << "\",\n  \"scene\": \"" << json_escape(o.scene) << "\",\n  \"surfaces\": " << n
+       << ",\n  \"frames\": " << o.frames << ",\n  \"repeats\": " << o.repeats << ",\n  \"tolerance_px\": "
+       << o.tolerance << ",\n  \"image\": [" << o.width << ", " << o.height << "],\n  \"hardware_threads\": " << cores
+       << ",\n  \"serial\": {\"path_ms\": " << t1_ms << ", \"triangles_per_frame\": [";
+    for (std::size_t f = 0; f < wl.serial_triangles.size(); ++f) js << (f ? ", " : "") << wl.serial_triangles[f];
+    js << "], \"frame_ms_median\": [";
+    for (int f = 0; f < o.frames; ++f) {
+      std::vector<double> v;
+      for (const auto& rep : serial_frame_ms) v.push_back(rep[f]);
+      js << (f ? ", " : "") << median(v);
+    }
+    js << "]},\n  \"results\": [\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const Row& r = rows[i];
+      const Cell& c = *r.cell;
+      js << "    {\"scheduler\": \"" << c.scheduler << "\", \"workers\": " << c.workers << ", \"path_ms\": "
+         << r.path_ms << ", \"frames_per_s\": " << r.fps << ", \"speedup\": " << r.speedup << ", \"ideal_pct\": "
+         << r.ideal_pct << ", \"utilization_pct\": " << r.utilization << ", \"imbalance_mean\": " << r.imbalance_mean
+         << ", \"imbalance_max\": " << c.imbalance_max << ", \"steals\": " << c.totals.steals_succeeded
+         << ", \"steal_attempts\": " << c.totals.steal_attempts << ", \"items_stolen\": " << c.totals.items_stolen
+         << ", \"lock_waits\": " << c.totals.lock_waits << ", \"lock_wait_ms\": " << c.totals.lock_wait_ns / 1e6
+         << ", \"setup_ms\": " << c.setup_ms << ", \"audit_failures\": " << c.audit_failures
+         << ", \"triangle_mismatches\": " << c.triangle_mismatches << ", \"path_ms_per_repeat\": [";
+      for (std::size_t k = 0; k < c.path_ms.size(); ++k) js << (k ? ", " : "") << c.path_ms[k];
+      js << "], \"frame_ms_median\": [";
+      for (int f = 0; f < o.frames; ++f) {
+        std::vector<double> v;
+        for (const auto& rep : c.frame_ms) v.push_back(rep[f]);
+        js << (f ? ", " : "") << median(v);
+      }
+      js << "]}" << (i + 1 < rows.size() ? "," : "") << "\n";
+    }
+    js << "  ]\n}\n";
+  }
+
+  // Plots: speed-up against P (one line per scheduler, the ideal dashed), and frame time along the path at the
+  // largest P not above the core count.
+  {
+    std::ofstream dat(dir / "frontsteal-speedup.dat");
+    for (const auto& name : o.schedulers) {
+      dat << "\"" << name << "\"\n";
+      for (const Row& r : rows) {
+        if (r.cell->scheduler == name) dat << r.cell->workers << ' ' << r.speedup << '\n';
+      }
+      dat << "\n\n";
+    }
+    fs::WorkerId best_p = 1;
+    for (fs::WorkerId p : o.threads) {
+      if (p <= cores) best_p = std::max(best_p, p);
+    }
+    std::ofstream frames(dir / "frontsteal-frames.dat");
+    frames << "\"serial loop\"\n";
+    for (int f = 0; f < o.frames; ++f) {
+      std::vector<double> v;
+      for (const auto& rep : serial_frame_ms) v.push_back(rep[f]);
+      frames << f << ' ' << median(v) << '\n';
+    }
+    frames << "\n\n";
+    int blocks = 1;
+    for (const Row& r : rows) {
+      if (r.cell->workers != best_p) continue;
+      frames << "\"" << r.cell->scheduler << " P=" << best_p << "\"\n";
+      for (int f = 0; f < o.frames; ++f) {
+        std::vector<double> v;
+        for (const auto& rep : r.cell->frame_ms) v.push_back(rep[f]);
+        frames << f << ' ' << median(v) << '\n';
+      }
+      frames << "\n\n";
+      ++blocks;
+    }
+    const fs::WorkerId max_p = *std::max_element(o.threads.begin(), o.threads.end());
+    std::ofstream gp(dir / "frontsteal.gp");
+    gp << "# gnuplot script written by frontsteal; run from " << o.out << ": gnuplot frontsteal.gp\n"
+       << "set terminal pngcairo size 1200,760 font 'sans,10'\nset key outside right top\nset grid\n"
+       << "set output 'frontsteal-speedup.png'\n"
+       << "set title \"Tessellation speed-up over the serial loop (measured): " << json_escape(o.scene) << ", " << n
+       << " surfaces\\n" << json_escape(machine) << "\"\n"
+       << "set xlabel 'workers P'\nset ylabel 'speed-up (T1 / T_P)'\nset xrange [0.5:" << max_p + 0.5 << "]\n"
+       << "set yrange [0:*]\n"
+       << "plot for [i=0:" << o.schedulers.size() - 1 << "] 'frontsteal-speedup.dat' index i using 1:2 with "
+          "linespoints lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1), (x <= " << cores << " ? x : " << cores
+       << ") with lines dashtype 2 lc 'black' title 'ideal'\n"
+       << "set output 'frontsteal-frames.png'\n"
+       << "set title 'Frame time along the camera path (measured), P = " << best_p
+       << " (frames 0-" << o.frames / 2 - 1 << " orbit, then zoom)'\n"
+       << "set xlabel 'frame'\nset ylabel 'ms'\nset autoscale x\nset yrange [0:*]\n"
+       << "plot for [i=0:" << blocks - 1 << "] 'frontsteal-frames.dat' index i using 1:2 with linespoints "
+          "lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1)\n";
+  }
+  if (o.plot) {
+    const std::string command = "cd '" + o.out + "' && gnuplot frontsteal.gp";
+    if (std::system(command.c_str()) != 0) {
+      std::cerr << kProgram << ": gnuplot failed or is not installed (Debian: apt-get install gnuplot-nox); the data "
+                   "and the script are in " << o.out << "/\n";
+    }
+  }
+  std::cout << "\nwrote " << (dir / "frontsteal.json").string() << ", .csv, .md"
+            << (o.plot ? ", frontsteal-speedup.png, frontsteal-frames.png" : "") << " (" << fixed(progress.seconds(), 0)
+            << " s)\n";
+
+  if (problems) {
+    std::cerr << kProgram << ": AUDIT FAILED:\n";
+    for (const Cell& c : cells) {
+      if (c.audit_failures || c.triangle_mismatches) {
+        std::cerr << "  " << c.scheduler << " P=" << c.workers << ": " << c.audit_failures << " frames not exactly-once, "
+                  << c.triangle_mismatches << " triangle mismatches; first: " << c.first_problem << '\n';
+      }
+    }
+    return 1;
   }
   return 0;
 }

@@ -509,6 +509,7 @@ int main(int argc, char** argv) {
     }
     if (o.targets.empty() && o.scenario_runs > 0) {
       for (const auto& t : targets()) {
+        if (!t.run_scenario) continue;  // the scenarios exercise the stealing protocol only
         std::uint64_t caught = 0;
         for (const auto& spec : model::scenarios()) {
           ScenarioRow row{t.name, std::string(spec.name), o.scenario_runs};
