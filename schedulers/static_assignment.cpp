@@ -62,6 +62,8 @@ Assignment morton_deal_assignment(ItemId items, WorkerId workers, const Workload
   Assignment a(workers);
   const std::vector<ItemId> order = morton_order(items, hints);
   for (ItemId k = 0; k < items; ++k) a[k % workers].push_back(order[k]);
+  // Same sets, processed in id order: the model's memory order (Morton order costs cache misses, ~15% at P=1).
+  for (auto& list : a) std::sort(list.begin(), list.end());
   return a;
 }
 
