@@ -48,6 +48,9 @@ enum class Defect : std::uint8_t {
   kNone = 0,
   kSkipFrontReread = 1 << 0,      // thief keeps its whole share without re-reading Front (drops T4, T5)
   kOwnerSkipsTransient = 1 << 1,  // owner claims without raising ListTransient (drops O1, O4)
+  // Greedy rendering's publication (component_publication.hpp):
+  kReuseWithoutGrace = 1 << 2,    // the frame driver reuses a retired slot without waiting for the pusher
+  kPublishEachSurface = 1 << 3,   // every surface swaps its component in (no per-component count: torn)
 };
 
 constexpr Defect operator|(Defect a, Defect b) noexcept {

@@ -45,6 +45,14 @@ enum class Site : std::uint8_t {
   kFrameResetActive,      // E4  last arriver re-arms the active count for the next frame
   kFramePublishDone,      // E5  last arriver publishes the frame as done
   kFrameAwaitDone,        // E6  caller (and workers before the next frame) wait for it
+  // Greedy rendering's publication of per-component triangles (component_publication.hpp, paper §5.2).
+  kPusherAnnounce,        // P1  pusher: Started := u before reading any component
+  kPusherReadPublished,   // P2  pusher: read Published[c], once per component and update
+  kPusherComplete,        // P3  pusher: Completed := u after drawing every component
+  kWriterCountDown,       // W1  tessellator: Remaining[c] -= 1 after writing one surface's triangles
+  kWriterPublish,         // W2  last tessellator of c: Published[c] := back slot (the atomic swap)
+  kWriterReadStarted,     // W3  same tessellator: read Started, the retired slot's reclamation stamp
+  kDriverReadCompleted,   // D1  frame driver: read Completed to see which retired slots are free
   kCount
 };
 
@@ -52,12 +60,18 @@ inline constexpr std::size_t kSiteCount = static_cast<std::size_t>(Site::kCount)
 
 enum class SiteKind : std::uint8_t { kLoad, kStore, kReadModifyWrite, kFence };
 
+// Which protocol a site belongs to: the stealing protocol (stealing_protocol.hpp, frame_loop.hpp) or greedy
+// rendering's triangle publication (component_publication.hpp). Mutation testing weakens one protocol's sites
+// at a time; a policy of one protocol never meets the other's sites.
+enum class Protocol : std::uint8_t { kStealing, kPublication };
+
 struct SiteInfo {
   Site site;
   std::string_view label;        // short label used in comments and reports, e.g. "O1"
   std::string_view name;         // dotted name, e.g. "owner.announce"
   SiteKind kind;
   std::string_view what;         // one line: what the access does
+  Protocol protocol = Protocol::kStealing;
 };
 
 inline constexpr std::array<SiteInfo, kSiteCount> kSiteTable{{
@@ -86,6 +100,20 @@ inline constexpr std::array<SiteInfo, kSiteCount> kSiteTable{{
     {Site::kFrameResetActive, "E4", "frame.reset_active", SiteKind::kStore, "last arriver re-arms active := P"},
     {Site::kFramePublishDone, "E5", "frame.publish_done", SiteKind::kStore, "last arriver publishes frame k done"},
     {Site::kFrameAwaitDone, "E6", "frame.await_done", SiteKind::kLoad, "wait until frame k is done"},
+    {Site::kPusherAnnounce, "P1", "pusher.announce", SiteKind::kStore, "Started := u before reading components",
+     Protocol::kPublication},
+    {Site::kPusherReadPublished, "P2", "pusher.read_published", SiteKind::kLoad, "read Published[c] once per update",
+     Protocol::kPublication},
+    {Site::kPusherComplete, "P3", "pusher.complete", SiteKind::kStore, "Completed := u after drawing",
+     Protocol::kPublication},
+    {Site::kWriterCountDown, "W1", "writer.count_down", SiteKind::kReadModifyWrite,
+     "Remaining[c] -= 1 after a surface's triangles are written", Protocol::kPublication},
+    {Site::kWriterPublish, "W2", "writer.publish", SiteKind::kReadModifyWrite,
+     "Published[c] := back slot, returning the retired slot", Protocol::kPublication},
+    {Site::kWriterReadStarted, "W3", "writer.read_started", SiteKind::kLoad,
+     "read Started: the retired slot's reclamation stamp", Protocol::kPublication},
+    {Site::kDriverReadCompleted, "D1", "driver.read_completed", SiteKind::kLoad,
+     "read Completed: retired slots stamped at or below it are free", Protocol::kPublication},
 }};
 
 constexpr const SiteInfo& info(Site s) noexcept { return kSiteTable[static_cast<std::size_t>(s)]; }

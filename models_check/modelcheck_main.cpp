@@ -331,6 +331,7 @@ std::string describe_table(const PolicyTable& t) {
   std::ostringstream out;
   for (std::size_t i = 0; i < kSiteCount; ++i) {
     const Site s = static_cast<Site>(i);
+    if (info(s).protocol != Protocol::kStealing) continue;
     out << "  " << info(s).label << " " << info(s).name << ": "
         << (info(s).kind == SiteKind::kFence ? name(t.fences[i]) : name(t.orders[i])) << "\n";
   }
@@ -506,6 +507,7 @@ int main(int argc, char** argv) {
     md << "## Certificate of Minimal\n\nMinimal's orders (core/policies.hpp):\n\n| site | order |\n|---|---|\n";
     for (std::size_t i = 0; i < kSiteCount; ++i) {
       const Site s = static_cast<Site>(i);
+      if (info(s).protocol != Protocol::kStealing) continue;
       md << "| " << info(s).label << " " << info(s).name << " | " << table_cell(minimal, s) << " |\n";
     }
     md << "\nEvery one-step weakening of Minimal, and whether a scenario kills it (all must be killed; that "

@@ -12,6 +12,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "core/frame_loop.hpp"
 #include "models_check/scenarios.hpp"
@@ -143,9 +144,10 @@ inline Verdict classify(rl::test_result_e r) {
   }
 }
 
+// Runs one suite under current_table(); `name` names the scenario in histories. The suite reads its scenario
+// from a global the caller set.
 template <class Suite>
-SearchResult simulate_suite(const ScenarioSpec& scenario, const SearchConfig& config) {
-  suite_context().scenario = &scenario;
+SearchResult simulate_suite(std::string_view name, const SearchConfig& config) {
   suite_context().failure = Verdict::kPass;
   suite_context().failure_detail[0] = '\0';
   suite_context().executions = 0;
@@ -195,11 +197,17 @@ SearchResult simulate_suite(const ScenarioSpec& scenario, const SearchConfig& co
     suite_context().execution_cap = 0;  // the replayed execution must run in full
     replay.collect_history = true;
     replay.output_history = true;
-    history << "scenario " << scenario.name << " under " << current_table().name << ": " << r.relacy_result
+    history << "scenario " << name << " under " << current_table().name << ": " << r.relacy_result
             << (r.detail.empty() ? "" : " — ") << r.detail << "\n";
     rl::simulate<Suite>(replay);
   }
   return r;
+}
+
+template <class Suite>
+SearchResult simulate_suite(const ScenarioSpec& scenario, const SearchConfig& config) {
+  suite_context().scenario = &scenario;
+  return simulate_suite<Suite>(scenario.name, config);
 }
 
 }  // namespace frontsteal::model

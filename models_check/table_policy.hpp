@@ -107,11 +107,12 @@ struct Mutant {
   PolicyTable table;
 };
 
-// Every one-step weakening of every site of `base`.
-inline std::vector<Mutant> one_step_mutants(const PolicyTable& base) {
+// Every one-step weakening of every site of `base` that belongs to `protocol`.
+inline std::vector<Mutant> one_step_mutants(const PolicyTable& base, Protocol protocol = Protocol::kStealing) {
   std::vector<Mutant> out;
   for (std::size_t i = 0; i < kSiteCount; ++i) {
     const Site s = static_cast<Site>(i);
+    if (info(s).protocol != protocol) continue;
     if (info(s).kind == SiteKind::kFence) {
       for (Fence f : weaker_fences(base.fences[i])) {
         Mutant m{s, std::string(name(base.fences[i])), std::string(name(f)), base};

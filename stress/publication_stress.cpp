@@ -1,0 +1,266 @@
+// frontsteal-stress-publication — greedy rendering's publication and reclamation (core/component_publication.hpp)
+// on real threads, with chaos injected at its labelled sites: a pusher thread drawing every component as fast as
+// it can, P tessellators (the stealing scheduler) writing every surface every frame, the caller as frame driver.
+//
+// What is checked, per pusher update and component:
+//   torn        the surfaces of the slot it read carry different frames (invariant I1);
+//   reuse       a tessellator was writing the slot while the pusher read it: each slot counts its writers in
+//               flight, and the pusher reads every surface's stamp twice around its "draw" (invariant I2);
+//   backwards   a component showed an older frame than in an earlier update (I3);
+// plus, under ThreadSanitizer, races on the triangle cells themselves (the sound policy's cells are plain memory;
+// the planted defects' cells are relaxed atomics so that the audit, not TSan's halt, reports them).
+// Outcome histogram: how many frames behind the newest finished frame each drawn component was (the lag).
+// Negative controls: Broken:ReuseWithoutGrace and Broken:PublishEachSurface must be caught; the run fails if not.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/cli_args.hpp"
+#include "core/component_publication.hpp"
+#include "core/policies.hpp"
+#include "core/publication_policies.hpp"
+#include "core/stealing_scheduler.hpp"
+#include "stress/chaos_backend.hpp"
+
+using namespace frontsteal;
+using namespace frontsteal::stress;
+
+namespace {
+
+constexpr std::string_view kProgram = "frontsteal-stress-publication";
+constexpr std::string_view kUsage = R"(usage: frontsteal-stress-publication [options]
+
+Stress test of greedy rendering's triangle publication and buffer reclamation on real threads with chaos: a
+pusher that never waits, P tessellators (the stealing scheduler, Fenced), the caller as frame driver. Audits every
+pusher update for torn components, use of a slot after its reuse and components going back in time; the planted
+defects Broken:ReuseWithoutGrace and Broken:PublishEachSurface must be caught. Build with the tsan preset for
+ThreadSanitizer's verdict on the triangle cells as well. Exits 1 on any unexpected outcome.
+
+options:
+  --seconds S      run time per case (policy x P x slots)                                   (default 2)
+  --threads LIST   tessellator counts                                                        (default 2,4)
+  --slots LIST     slots per component                                                       (default 2,3)
+  --components N   components (1..4 surfaces each, seeded)                                   (default 24)
+  --chaos N        chaos injections per million labelled accesses                            (default 20000)
+  --seed N         component sizes and chaos                                                  (default 1)
+  --out DIR        results directory                                 (default out/stress-publication)
+  --quiet          no progress lines
+  --help           this text
+)";
+
+struct Options {
+  double seconds = 2;
+  std::vector<WorkerId> threads{2, 4};
+  std::vector<SlotIndex> slots{2, 3};
+  std::uint32_t components = 24;
+  std::uint32_t chaos = 20000;
+  std::uint64_t seed = 1;
+  std::string out = "out/stress-publication";
+  bool quiet = false;
+};
+
+struct CaseResult {
+  std::string policy;
+  WorkerId threads = 0;
+  SlotIndex slots = 0;
+  bool negative_control = false;
+  std::uint64_t frames = 0, updates = 0, driver_waits = 0;
+  std::uint64_t torn = 0, reuse = 0, backwards = 0;
+  std::map<std::uint64_t, std::uint64_t> lag;  // frames behind the newest finished frame -> component draws
+  bool passed() const { return negative_control ? (torn + reuse + backwards) > 0 : (torn + reuse + backwards) == 0; }
+};
+
+// One triangle cell per (component, slot, surface): the frame that wrote it. Plain memory for the sound policy
+// (ThreadSanitizer checks it), relaxed atomics for the planted defects (the audit reports them, TSan does not halt).
+template <bool kPlain>
+struct TriangleCell {
+  std::uint64_t frame = 0;
+  std::uint64_t read() const { return frame; }
+  void write(std::uint64_t f) { frame = f; }
+};
+template <>
+struct TriangleCell<false> {
+  std::atomic<std::uint64_t> frame{0};
+  std::uint64_t read() const { return frame.load(std::memory_order::relaxed); }
+  void write(std::uint64_t f) { frame.store(f, std::memory_order::relaxed); }
+};
+
+template <class Policy>
+CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool negative_control) {
+  constexpr bool kPlain = !has(Policy::defects(), Defect::kReuseWithoutGrace) && !has(Policy::defects(), Defect::kPublishEachSurface);
+  CaseResult r;
+  r.policy = std::string(Policy::kName);
+  r.threads = threads;
+  r.slots = slots;
+  r.negative_control = negative_control;
+  std::mt19937_64 rng(o.seed);
+  std::vector<std::uint32_t> sizes(o.components);
+  std::vector<ComponentId> owner;       // surface -> component
+  std::vector<std::uint32_t> position;  // surface -> index inside its component
+  for (ComponentId c = 0; c < o.components; ++c) {
+    sizes[c] = 1 + static_cast<std::uint32_t>(rng() % 4);
+    for (std::uint32_t i = 0; i < sizes[c]; ++i) {
+      owner.push_back(c);
+      position.push_back(i);
+    }
+  }
+  const auto surfaces = static_cast<ItemId>(owner.size());
+  ComponentPublication<ChaosBackend, Policy> publication(sizes, slots);
+  std::vector<TriangleCell<kPlain>> cells(static_cast<std::size_t>(o.components) * slots * 4);
+  std::vector<std::atomic<std::uint32_t>> writing(static_cast<std::size_t>(o.components) * slots);
+  const auto cell = [&](ComponentId c, SlotIndex s, std::uint32_t i) -> TriangleCell<kPlain>& {
+    return cells[(static_cast<std::size_t>(c) * slots + s) * 4 + i];
+  };
+  std::atomic<std::uint64_t> newest_frame{0};
+  std::atomic<bool> stop{false};
+
+  // The pusher reads every component's slot first and checks it again after "drawing" them all, so it holds
+  // each slot for a whole update, as the renderer does.
+  std::thread pusher([&] {
+    std::vector<std::uint64_t> last(o.components, 0), first(o.components, 0);
+    std::vector<SlotIndex> held(o.components);
+    std::vector<char> torn(o.components);
+    while (!stop.load(std::memory_order::relaxed)) {
+      publication.begin_update();
+      const std::uint64_t newest = newest_frame.load(std::memory_order::relaxed);
+      for (ComponentId c = 0; c < o.components; ++c) {
+        held[c] = publication.read(c);
+        if (held[c] == decltype(publication)::kNothing) continue;
+        first[c] = cell(c, held[c], 0).read();
+        torn[c] = false;
+        for (std::uint32_t i = 1; i < sizes[c]; ++i) torn[c] = torn[c] || cell(c, held[c], i).read() != first[c];
+        r.reuse += writing[static_cast<std::size_t>(c) * slots + held[c]].load(std::memory_order::relaxed) != 0;
+      }
+      std::this_thread::yield();  // "drawing": the window a premature reuse would hit
+      for (ComponentId c = 0; c < o.components; ++c) {
+        if (held[c] == decltype(publication)::kNothing) continue;
+        bool reused = writing[static_cast<std::size_t>(c) * slots + held[c]].load(std::memory_order::relaxed) != 0;
+        for (std::uint32_t i = 0; i < sizes[c]; ++i) reused = reused || (!torn[c] && cell(c, held[c], i).read() != first[c]);
+        r.torn += torn[c];
+        r.reuse += reused;
+        r.backwards += first[c] < last[c];
+        last[c] = std::max(last[c], first[c]);
+        ++r.lag[newest >= first[c] ? newest - first[c] : 0];
+      }
+      publication.end_update();
+      ++r.updates;
+    }
+  });
+
+  chaos_settings() = {o.chaos, o.seed};
+  {
+    StealingScheduler<Fenced, ChaosBackend> scheduler({.workers = threads, .items = surfaces, .seed = o.seed});
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.seconds);
+    while (std::chrono::steady_clock::now() < deadline) {
+      r.driver_waits += publication.prepare_frame();
+      const std::uint64_t frame = ++r.frames;
+      scheduler.run_frame([&](ItemId id, WorkerId) {
+        const ComponentId c = owner[id];
+        const SlotIndex s = publication.back_slot(c);
+        std::atomic<std::uint32_t>& w = writing[static_cast<std::size_t>(c) * slots + s];
+        w.fetch_add(1, std::memory_order::relaxed);
+        cell(c, s, position[id]).write(frame);
+        w.fetch_sub(1, std::memory_order::release);
+        publication.finish_surface(c);
+      });
+      newest_frame.store(frame, std::memory_order::relaxed);
+    }
+  }
+  chaos_settings() = {0, o.seed};
+  stop.store(true, std::memory_order::relaxed);
+  pusher.join();
+  return r;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  cli::ArgReader args(argc, argv, kProgram, kUsage);
+  while (args.next()) {
+    const std::string_view a = args.flag();
+    if (a == "--seconds") {
+      o.seconds = cli::parse_number<double>(kProgram, a, args.value(), 0.01, 3600);
+    } else if (a == "--threads") {
+      o.threads.clear();
+      for (const auto& t : cli::split_list(args.value())) o.threads.push_back(cli::parse_number<WorkerId>(kProgram, a, t, 1, 256));
+    } else if (a == "--slots") {
+      o.slots.clear();
+      for (const auto& t : cli::split_list(args.value())) o.slots.push_back(cli::parse_number<SlotIndex>(kProgram, a, t, 2, 16));
+    } else if (a == "--components") {
+      o.components = cli::parse_number<std::uint32_t>(kProgram, a, args.value(), 1, 100000);
+    } else if (a == "--chaos") {
+      o.chaos = cli::parse_number<std::uint32_t>(kProgram, a, args.value(), 0, 1000000);
+    } else if (a == "--seed") {
+      o.seed = cli::parse_number<std::uint64_t>(kProgram, a, args.value(), 0, ~std::uint64_t{0});
+    } else if (a == "--out") {
+      o.out = args.value();
+    } else if (a == "--quiet") {
+      o.quiet = true;
+    } else {
+      cli::usage_error(kProgram, "unknown option '" + std::string(a) + "'");
+    }
+  }
+  return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  std::filesystem::create_directories(o.out);
+  std::vector<CaseResult> results;
+  using Runner = CaseResult (*)(const Options&, WorkerId, SlotIndex, bool);
+  const std::vector<std::pair<Runner, bool>> policies{{&run_case<PublicationOrders>, false},
+                                                      {&run_case<BrokenReuseWithoutGrace>, true},
+                                                      {&run_case<BrokenPublishEachSurface>, true}};
+  const std::size_t total = policies.size() * o.threads.size() * o.slots.size();
+  for (const auto& [run, negative] : policies) {
+    for (WorkerId p : o.threads) {
+      for (SlotIndex s : o.slots) {
+        results.push_back(run(o, p, s, negative));
+        const CaseResult& r = results.back();
+        if (!o.quiet) {
+          std::cerr << kProgram << ": [" << results.size() << "/" << total << "] " << r.policy << " P=" << p
+                    << " slots=" << s << ": " << r.frames << " frames, " << r.updates << " updates, torn " << r.torn
+                    << ", reuse " << r.reuse << ", backwards " << r.backwards << " -> "
+                    << (r.passed() ? (negative ? "caught" : "ok") : "UNEXPECTED") << "\n";
+        }
+      }
+    }
+  }
+  bool ok = true;
+  std::ostringstream md, js;
+  md << "# Publication stress (measured, chaos " << o.chaos << " per million, " << o.seconds << " s per case)\n\n"
+     << "| policy | P | slots | frames | updates | driver waits | torn | reuse | backwards | lag histogram (frames behind: draws) | verdict |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  js << "{\n  \"cases\": [\n";
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const CaseResult& r = results[k];
+    ok = ok && r.passed();
+    std::ostringstream lag;
+    for (const auto& [behind, n] : r.lag) lag << (lag.tellp() > 0 ? ", " : "") << behind << ": " << n;
+    const std::string verdict = r.passed() ? (r.negative_control ? "caught (negative control)" : "ok")
+                                           : (r.negative_control ? "FAIL: negative control not caught" : "FAIL");
+    md << "| " << r.policy << " | " << r.threads << " | " << r.slots << " | " << r.frames << " | " << r.updates << " | "
+       << r.driver_waits << " | " << r.torn << " | " << r.reuse << " | " << r.backwards << " | " << lag.str() << " | "
+       << verdict << " |\n";
+    js << "    {\"policy\": \"" << r.policy << "\", \"threads\": " << r.threads << ", \"slots\": " << r.slots
+       << ", \"frames\": " << r.frames << ", \"updates\": " << r.updates << ", \"driver_waits\": " << r.driver_waits
+       << ", \"torn\": " << r.torn << ", \"reuse\": " << r.reuse << ", \"backwards\": " << r.backwards
+       << ", \"negative_control\": " << (r.negative_control ? "true" : "false") << ", \"passed\": "
+       << (r.passed() ? "true" : "false") << "}" << (k + 1 < results.size() ? "," : "") << "\n";
+  }
+  js << "  ],\n  \"all_as_expected\": " << (ok ? "true" : "false") << "\n}\n";
+  std::ofstream(o.out + "/publication-stress.md") << md.str();
+  std::ofstream(o.out + "/publication-stress.json") << js.str();
+  std::cout << md.str();
+  return ok ? 0 : 1;
+}
