@@ -28,6 +28,8 @@ packages=(
   # the main job's plots (schedulers/frontsteal_main.cpp writes a gnuplot script and runs it); oneTBB is
   # listed above (libtbb-dev), OpenMP comes with g++ (libgomp)
   gnuplot-nox
+  # greedy rendering (render/): headless OpenGL through EGL (Mesa's llvmpipe without a GPU), PNG output
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
 )
 
 missing=()

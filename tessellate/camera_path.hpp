@@ -52,4 +52,42 @@ inline Camera camera_on_path(const Box& box, int frame, int frames, int width = 
   return cam;
 }
 
+// The paths a renderer can follow (paper §5 uses a walkthrough and zooms; Table 1 an orbit).
+enum class CameraPathKind { orbit, zoom, walkthrough, orbit_then_zoom };
+
+inline const char* name(CameraPathKind k) {
+  switch (k) {
+    case CameraPathKind::orbit: return "orbit";
+    case CameraPathKind::zoom: return "zoom";
+    case CameraPathKind::walkthrough: return "walkthrough";
+    case CameraPathKind::orbit_then_zoom: return "orbit-then-zoom";
+  }
+  return "?";
+}
+
+// Frame k of n of a path; like camera_on_path, a pure function of (box, kind, k, n).
+//   orbit: one turn around the whole model from above; zoom: from the overview into the corner region;
+//   walkthrough: at a fifth of the model's height, along the box's diagonal, looking ahead and slightly
+//   down, swaying left and right; orbit_then_zoom: camera_on_path.
+inline Camera camera_on(CameraPathKind kind, const Box& box, int frame, int frames, int width, int height) {
+  switch (kind) {
+    case CameraPathKind::orbit_then_zoom: return camera_on_path(box, frame, frames, width, height);
+    case CameraPathKind::orbit: return camera_on_path(box, frame, 2 * std::max(1, frames), width, height);
+    case CameraPathKind::zoom: return camera_on_path(box, frames + frame, 2 * std::max(1, frames), width, height);
+    case CameraPathKind::walkthrough: break;
+  }
+  Camera cam = camera_on_path(box, 0, 2, width, height);  // near/far planes and viewport
+  const glm::dvec3 extent = box.hi - box.lo;
+  const double t = frames > 1 ? static_cast<double>(frame) / (frames - 1) : 0.0;
+  const glm::dvec3 a = box.lo + glm::dvec3(0.05 * extent.x, 0.05 * extent.y, 0.2 * extent.z + 0.02 * glm::length(extent));
+  const glm::dvec3 b = box.lo + glm::dvec3(0.95 * extent.x, 0.95 * extent.y, a.z - box.lo.z);
+  cam.eye = a + t * (b - a);
+  const glm::dvec3 ahead = glm::normalize(b - a);
+  const glm::dvec3 side = glm::normalize(glm::cross(ahead, glm::dvec3(0, 0, 1)));
+  const double sway = 0.35 * std::sin(2.0 * std::numbers::pi * 1.5 * t);
+  cam.target = cam.eye + ahead + sway * side + glm::dvec3(0, 0, -0.25);
+  cam.near_plane = 1e-4 * glm::length(extent);
+  return cam;
+}
+
 }  // namespace frontsteal::tess
