@@ -122,6 +122,7 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
   };
   std::atomic<std::uint64_t> newest_frame{0};
   std::atomic<bool> stop{false};
+  chaos_settings() = {o.chaos, o.seed};  // before any thread of the case starts; reset after all have joined
 
   // The pusher reads every component's slot first and checks it again after "drawing" them all, so it holds
   // each slot for a whole update, as the renderer does.
@@ -156,7 +157,6 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
     }
   });
 
-  chaos_settings() = {o.chaos, o.seed};
   {
     StealingScheduler<Fenced, ChaosBackend> scheduler({.workers = threads, .items = surfaces, .seed = o.seed});
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.seconds);
@@ -175,9 +175,9 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
       newest_frame.store(frame, std::memory_order::relaxed);
     }
   }
-  chaos_settings() = {0, o.seed};
   stop.store(true, std::memory_order::relaxed);
   pusher.join();
+  chaos_settings() = {0, o.seed};
   return r;
 }
 
