@@ -240,6 +240,7 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
     tess::Camera cam = s.camera(0);
     tess::Frustum frustum = tess::Frustum::of(cam);
     double seconds_per_triangle = 0;
+    int frame_view = -1;  // the path frame the current tessellation frame is for
     const double period = o.display_rate > 0 ? 1.0 / o.display_rate : 0.0;
     for (int u = 0; u < o.updates; ++u) {
       pace(o, start, u);
@@ -251,7 +252,9 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
       rec.budget_ms = 1e3 * budget;
       const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget));
       do {  // at least one surface per update, so tessellation cannot starve
+        if (next == model.surfaces.size() && frame_view == u) break;  // this view is tessellated already
         if (next == model.surfaces.size()) {
+          frame_view = u;
           if (stats.surfaces_tessellated > 0) ++stats.tessellation_frames;  // the frame just finished
           stats.driver_waits += s.prepare(u);
           cam = s.camera(u);
