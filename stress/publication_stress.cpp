@@ -141,7 +141,9 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
         for (std::uint32_t i = 1; i < sizes[c]; ++i) torn[c] = torn[c] || cell(c, held[c], i).read() != first[c];
         r.reuse += writing[static_cast<std::size_t>(c) * slots + held[c]].load(std::memory_order::relaxed) != 0;
       }
-      std::this_thread::yield();  // "drawing": the window a premature reuse would hit
+      // "Drawing": the window a premature reuse would hit. A sleep, not a yield, so that tessellators get a core
+      // even when other processes load every core (a yield alone left the defect uncaught under CI load).
+      std::this_thread::sleep_for(std::chrono::microseconds(50));
       for (ComponentId c = 0; c < o.components; ++c) {
         if (held[c] == decltype(publication)::kNothing) continue;
         bool reused = writing[static_cast<std::size_t>(c) * slots + held[c]].load(std::memory_order::relaxed) != 0;
