@@ -1,0 +1,63 @@
+// calibration.hpp — the costs the simulator charges on top of the items, measured by microbenchmarks here.
+//
+//   per model (ModelCosts)   item_ns: a scheduler's time per no-op item at P = 1 (claiming, the indirect call,
+//                            the clock reads of busy time), the real scheduler of the registry;
+//                            frame_fixed_ns: a frame's cost at P = 1 beyond its items (wake the worker, join:
+//                            frames of ~1 ms, so the caller sleeps in the kernel as on real frames);
+//                            second_worker_ns: what P = 2 adds (median of interleaved measurements, ≥ 0).
+//   extra_worker_ns          each worker beyond 2 (ASSUMED, not measurable here): 1 µs of kernel wake work in
+//                            the notify_all plus two line transfers (its arrival RMW and its start read).
+//   line_transfer_ns         one cache line moved between two cores: an atomic ping-pong, half a round trip.
+//   lock_uncontended_ns      std::mutex lock + cursor update + unlock on one core.
+//   lock_handoff_ns          the same under contention from another core: time per acquisition while two
+//                            threads hammer one lock (futex sleep and wake included).
+//   fence_ns                 one std::atomic_thread_fence(seq_cst) (MFENCE or a locked instruction on x86).
+// Derived (counted from the protocol's accesses to the victim's lines, not measured as a whole):
+//   steal = 4 line transfers (LockList CAS, Front/End read, End store, ListTransient + Front re-read) + fence;
+//   a busy LockList or a lost Chase–Lev CAS = 1 transfer; an empty victim = 2; Chase–Lev steal = 4 transfers.
+// On a machine with one hardware thread the two-thread values cannot be measured: they are then the
+// defaults below and `assumed` says so.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace frontsteal::papers {
+
+struct ModelCosts {
+  double item_ns = 5;
+  double frame_fixed_ns = 50000;
+  double second_worker_ns = 0;
+};
+
+struct Overheads {
+  ModelCosts static_list, queue, stealing, chase_lev;
+  double line_transfer_ns = 80;
+  double lock_uncontended_ns = 20;
+  double lock_handoff_ns = 150;
+  double fence_ns = 20;
+  double idle_round_ns = 200;
+  double extra_worker_ns() const { return 1000 + 2 * line_transfer_ns; }
+  double frame_ns(const ModelCosts& m, unsigned workers) const {
+    return m.frame_fixed_ns + (workers >= 2 ? m.second_worker_ns : 0) +
+           (workers > 2 ? (workers - 2) * extra_worker_ns() : 0);
+  }  // a thief's pause after a round without a share (the protocol's spin back-off)
+  std::string machine, commit;
+  bool assumed = true;         // true: defaults, not measured
+
+  double steal_ns() const { return 4 * line_transfer_ns + fence_ns; }
+  double steal_busy_ns() const { return line_transfer_ns; }
+  double steal_empty_ns() const { return 2 * line_transfer_ns; }
+  double steal_chase_lev_ns() const { return 4 * line_transfer_ns; }
+};
+
+// Runs the microbenchmarks (about 5 s). `progress` gets a line per step (may be empty).
+Overheads calibrate(const std::string& machine, const std::string& commit,
+                    const std::function<void(const std::string&)>& progress);
+
+void write_overheads(const Overheads& o, const std::filesystem::path& file);
+Overheads read_overheads(const std::filesystem::path& file);  // throws std::runtime_error naming the line
+std::string describe(const Overheads& o);                     // a markdown table
+
+}  // namespace frontsteal::papers

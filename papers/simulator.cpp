@@ -1,0 +1,325 @@
+// simulator.cpp — the discrete-event models of simulator.hpp.
+//
+// Each model is a loop over events (time, worker) in time order; an event is the instant a worker does its next
+// shared-memory step (claim an item, ask for the lock, try a victim). Between events a worker only runs items,
+// so shared state changes only at event instants and the models need no finer clock.
+#include "papers/simulator.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <numeric>
+#include <queue>
+#include <random>
+#include <stdexcept>
+
+namespace frontsteal::papers {
+namespace {
+
+struct Event {
+  double at;
+  WorkerId worker;
+  bool operator>(const Event& o) const { return at > o.at || (at == o.at && worker > o.worker); }
+};
+using EventQueue = std::priority_queue<Event, std::vector<Event>, std::greater<Event>>;
+
+// What every model reports for one frame.
+struct FrameOutcome {
+  double last_finish_ns = 0;
+  std::vector<double> busy_ns;             // per worker: item costs it ran
+  std::vector<std::vector<ItemId>> ran;    // per worker: the items it ran, in order
+};
+
+FrameOutcome run_static(const std::vector<double>& cost, const sched::Assignment& lists, const ModelCosts& mc) {
+  FrameOutcome out;
+  out.busy_ns.assign(lists.size(), 0);
+  out.ran = lists;
+  for (std::size_t w = 0; w < lists.size(); ++w) {
+    double t = 0;
+    for (ItemId id : lists[w]) {
+      out.busy_ns[w] += cost[id];
+      t += cost[id] + mc.item_ns;
+    }
+    out.last_finish_ns = std::max(out.last_finish_ns, t);
+  }
+  return out;
+}
+
+FrameOutcome run_queue(const std::vector<double>& cost, WorkerId p, const Overheads& o, SimulatedRun& totals) {
+  const auto n = static_cast<ItemId>(cost.size());
+  const ItemId grain = sched::default_grain(n, p);
+  FrameOutcome out;
+  out.busy_ns.assign(p, 0);
+  out.ran.assign(p, {});
+  EventQueue events;
+  for (WorkerId w = 0; w < p; ++w) events.push({0, w});
+  ItemId cursor = 0;
+  double free_at = 0;
+  WorkerId last_holder = p;  // none yet
+  while (!events.empty()) {
+    const Event e = events.top();
+    events.pop();
+    if (cursor >= n) {  // the worker takes the lock once more, finds the queue empty and leaves
+      out.last_finish_ns = std::max(out.last_finish_ns, e.at);
+      continue;
+    }
+    const double granted = std::max(e.at, free_at);
+    double hold = o.lock_uncontended_ns + (last_holder != p && last_holder != e.worker ? o.line_transfer_ns : 0);
+    if (granted > e.at) {
+      hold = o.lock_handoff_ns;
+      ++totals.lock_waits;
+    }
+    free_at = granted + hold;
+    last_holder = e.worker;
+    const ItemId first = cursor;
+    cursor = std::min<ItemId>(n, cursor + grain);
+    double t = granted + hold;
+    for (ItemId id = first; id < cursor; ++id) {
+      out.busy_ns[e.worker] += cost[id];
+      out.ran[e.worker].push_back(id);
+      t += cost[id] + o.queue.item_ns;
+    }
+    events.push({t, e.worker});
+  }
+  return out;
+}
+
+// The stealing protocol's state that survives frames: each worker's list.
+struct StealingState {
+  std::vector<std::vector<ItemId>> lists;
+  std::vector<std::vector<WorkerId>> victim_orders;
+};
+
+FrameOutcome run_stealing(const std::vector<double>& cost, StealingState& state, const Overheads& o,
+                          bool plant_lost_steal, SimulatedRun& totals) {
+  const auto p = static_cast<WorkerId>(state.lists.size());
+  struct Worker {
+    std::vector<ItemId> list;
+    std::size_t front = 0, end = 0;
+    std::vector<ItemId> share;  // a steal in progress: installed (and stealable) only when the steal ends
+    std::size_t next_victim = 0;
+    WorkerId failures_in_round = 0;
+    double lock_free_at = 0;  // this worker's LockList is held by a thief until then
+  };
+  std::vector<Worker> ws(p);
+  std::int64_t unclaimed = 0;
+  for (WorkerId w = 0; w < p; ++w) {
+    ws[w].list = state.lists[w];
+    ws[w].end = ws[w].list.size();
+    unclaimed += static_cast<std::int64_t>(ws[w].end);
+  }
+  FrameOutcome out;
+  out.busy_ns.assign(p, 0);
+  out.ran.assign(p, {});
+  EventQueue events;
+  for (WorkerId w = 0; w < p; ++w) events.push({0, w});
+  while (!events.empty()) {
+    const Event e = events.top();
+    events.pop();
+    Worker& me = ws[e.worker];
+    if (!me.share.empty()) {  // the steal is over: install the share, as the protocol does after unlocking
+      me.list.swap(me.share);
+      me.share.clear();
+      me.front = 0;
+      me.end = me.list.size();
+    }
+    if (me.front < me.end) {  // owner: claim the item at Front and run it
+      const ItemId id = me.list[me.front++];
+      --unclaimed;
+      out.busy_ns[e.worker] += cost[id];
+      out.ran[e.worker].push_back(id);
+      events.push({e.at + cost[id] + o.stealing.item_ns, e.worker});
+      continue;
+    }
+    if (unclaimed <= 0 || p == 1) {  // every list is empty: the worker is done
+      out.last_finish_ns = std::max(out.last_finish_ns, e.at);
+      continue;
+    }
+    const std::vector<WorkerId>& order = state.victim_orders[e.worker];
+    Worker& victim = ws[order[me.next_victim++ % order.size()]];
+    double spent = 0;
+    if (victim.lock_free_at > e.at) {
+      spent = o.steal_busy_ns();
+      ++totals.failed_steals;
+    } else if (victim.front >= victim.end) {
+      spent = o.steal_empty_ns();
+      ++totals.failed_steals;
+    } else {  // steal the second half; End is lowered at once, the share is ours when the steal's time is over
+      const std::size_t mid = victim.front + (victim.end - victim.front) / 2;
+      me.share.assign(victim.list.begin() + static_cast<std::ptrdiff_t>(mid),
+                      victim.list.begin() + static_cast<std::ptrdiff_t>(victim.end));
+      if (!plant_lost_steal) victim.end = mid;
+      victim.lock_free_at = e.at + o.steal_ns();
+      me.failures_in_round = 0;
+      ++totals.steals;
+      events.push({e.at + o.steal_ns(), e.worker});
+      continue;
+    }
+    if (++me.failures_in_round >= p - 1) {
+      me.failures_in_round = 0;
+      spent += o.idle_round_ns;
+    }
+    events.push({e.at + spent, e.worker});
+  }
+  return out;
+}
+
+FrameOutcome run_chase_lev(const std::vector<double>& cost, WorkerId p, const Overheads& o, std::mt19937_64& rng,
+                           SimulatedRun& totals) {
+  const auto n = static_cast<ItemId>(cost.size());
+  struct Worker {
+    std::vector<IdRange> deque;  // [top, size): top = oldest (largest)
+    std::size_t top = 0;
+    IdRange running{0, 0};
+    IdRange stolen{0, 0};  // a steal in progress: pushed onto the deque when the steal ends
+    WorkerId failures_in_round = 0;
+    double top_busy_until = 0;  // a thief's CAS on top is in flight until then
+  };
+  std::vector<Worker> ws(p);
+  for (WorkerId w = 0; w < p; ++w) {
+    const auto lo = static_cast<ItemId>(std::uint64_t{n} * w / p);
+    const auto hi = static_cast<ItemId>(std::uint64_t{n} * (w + 1) / p);
+    if (hi > lo) ws[w].deque.push_back({lo, hi});
+  }
+  std::int64_t remaining = n;
+  FrameOutcome out;
+  out.busy_ns.assign(p, 0);
+  out.ran.assign(p, {});
+  EventQueue events;
+  for (WorkerId w = 0; w < p; ++w) events.push({0, w});
+  std::uniform_int_distribution<WorkerId> other(0, p > 1 ? p - 2 : 0);
+  while (!events.empty()) {
+    const Event e = events.top();
+    events.pop();
+    Worker& me = ws[e.worker];
+    if (!me.stolen.empty()) {
+      me.deque.push_back(me.stolen);
+      me.stolen = {0, 0};
+    }
+    if (me.running.begin < me.running.end) {
+      const ItemId id = me.running.begin++;
+      --remaining;
+      out.busy_ns[e.worker] += cost[id];
+      out.ran[e.worker].push_back(id);
+      events.push({e.at + cost[id] + o.chase_lev.item_ns, e.worker});
+      continue;
+    }
+    if (me.top < me.deque.size()) {  // take the newest range, split off upper halves down to one item
+      IdRange r = me.deque.back();
+      me.deque.pop_back();
+      while (r.end - r.begin > 1) {
+        const ItemId mid = r.begin + (r.end - r.begin) / 2;
+        me.deque.push_back({mid, r.end});
+        r.end = mid;
+      }
+      me.running = r;
+      events.push({e.at, e.worker});
+      continue;
+    }
+    me.deque.clear();
+    me.top = 0;
+    if (remaining <= 0 || p == 1) {
+      out.last_finish_ns = std::max(out.last_finish_ns, e.at);
+      continue;
+    }
+    WorkerId v = other(rng);
+    if (v >= e.worker) ++v;
+    Worker& victim = ws[v];
+    double spent = 0;
+    if (victim.top >= victim.deque.size()) {
+      spent = o.steal_empty_ns();
+      ++totals.failed_steals;
+    } else if (victim.top_busy_until > e.at) {
+      spent = o.steal_busy_ns();
+      ++totals.failed_steals;
+    } else {
+      me.stolen = victim.deque[victim.top++];
+      victim.top_busy_until = e.at + o.steal_chase_lev_ns();
+      me.failures_in_round = 0;
+      ++totals.steals;
+      events.push({e.at + o.steal_chase_lev_ns(), e.worker});
+      continue;
+    }
+    if (++me.failures_in_round >= p - 1) {
+      me.failures_in_round = 0;
+      spent += o.idle_round_ns;
+    }
+    events.push({e.at + spent, e.worker});
+  }
+  return out;
+}
+
+}  // namespace
+
+SimulatedRun simulate(const CostTrace& trace, const Overheads& o, const SimulationOptions& opt) {
+  const auto n = static_cast<ItemId>(trace.surfaces());
+  const WorkerId p = opt.workers;
+  if (p == 0) throw std::invalid_argument("simulate: at least one worker");
+  if (opt.model == Model::static_list) {
+    if (!opt.assignment) throw std::invalid_argument("simulate: the static model needs an assignment");
+    sched::require_partition(*opt.assignment, p, n);
+  }
+  SimulatedRun run;
+  StealingState stealing;
+  if (opt.model == Model::stealing) {
+    std::mt19937_64 rng(opt.seed);
+    for (WorkerId w = 0; w < p; ++w) {  // contiguous blocks, as core/frame_loop.hpp's block_allocation
+      std::vector<ItemId> list;
+      for (auto id = static_cast<ItemId>(std::uint64_t{n} * w / p); id < std::uint64_t{n} * (w + 1) / p; ++id) {
+        list.push_back(id);
+      }
+      stealing.lists.push_back(std::move(list));
+      std::vector<WorkerId> order;
+      for (WorkerId v = 0; v < p; ++v) {
+        if (v != w) order.push_back(v);
+      }
+      std::shuffle(order.begin(), order.end(), rng);
+      stealing.victim_orders.push_back(std::move(order));
+    }
+  }
+  std::mt19937_64 chase_rng(opt.seed);
+  double busy_total = 0, available = 0, imbalance_sum = 0;
+  std::vector<int> runs(n);
+  for (std::size_t f = 0; f < trace.frames(); ++f) {
+    const std::vector<double>& cost = trace.cost_ns[f];
+    FrameOutcome fo;
+    const ModelCosts* mc = nullptr;
+    switch (opt.model) {
+      case Model::static_list: fo = run_static(cost, *opt.assignment, o.static_list); mc = &o.static_list; break;
+      case Model::queue: fo = run_queue(cost, p, o, run); mc = &o.queue; break;
+      case Model::stealing: fo = run_stealing(cost, stealing, o, opt.plant_lost_steal, run); mc = &o.stealing; break;
+      case Model::chase_lev: fo = run_chase_lev(cost, p, o, chase_rng, run); mc = &o.chase_lev; break;
+    }
+    const double frame = fo.last_finish_ns + o.frame_ns(*mc, p);
+    run.frame_ns.push_back(frame);
+    run.path_ns += frame;
+    const double busy = std::accumulate(fo.busy_ns.begin(), fo.busy_ns.end(), 0.0);
+    busy_total += busy;
+    available += frame * p;
+    const double mean = busy / p;
+    imbalance_sum += mean > 0 ? *std::max_element(fo.busy_ns.begin(), fo.busy_ns.end()) / mean : 1.0;
+    // Audit: every item exactly once.
+    std::fill(runs.begin(), runs.end(), 0);
+    for (const auto& list : fo.ran) {
+      for (ItemId id : list) ++runs[id];
+    }
+    if (std::any_of(runs.begin(), runs.end(), [](int c) { return c != 1; })) ++run.audit_failures;
+    if (opt.model == Model::stealing) {  // next lists: what each worker ran, in id order (duplicates to the first)
+      std::vector<char> taken(n, 0);
+      for (WorkerId w = 0; w < p; ++w) {
+        std::vector<ItemId> next;
+        for (ItemId id : fo.ran[w]) {
+          if (!taken[id]) next.push_back(id);
+          taken[id] = 1;
+        }
+        std::sort(next.begin(), next.end());
+        stealing.lists[w] = std::move(next);
+      }
+    }
+  }
+  run.frames_per_s = run.path_ns > 0 ? 1e9 * static_cast<double>(trace.frames()) / run.path_ns : 0;
+  run.utilization_pct = available > 0 ? 100.0 * busy_total / available : 0;
+  run.imbalance_mean = trace.frames() ? imbalance_sum / static_cast<double>(trace.frames()) : 0;
+  return run;
+}
+
+}  // namespace frontsteal::papers

@@ -1,0 +1,60 @@
+// simulator.hpp — trace-driven discrete-event models of the schedulers, for more processors than the machine has.
+//
+// A model replays a cost trace (cost_trace.hpp): item i of frame f takes cost_ns[f][i] on any worker (the
+// serial loop's time: no cache or memory-bandwidth effects of P cores sharing a machine are modelled). On top
+// of the item costs each model charges what its scheduler does, in the calibrated costs of calibration.hpp:
+//
+//   static     (round robin, spatial partition) each worker runs its fixed list; per item `item_static`.
+//   queue      one lock over a cursor, grain N/(100P) (paper §4.1). A worker asks for the lock at time t and
+//              gets it at max(t, free_at); the hold is `lock_uncontended` (+ one line transfer when the last
+//              holder was another worker), or `lock_handoff` when it had to wait (the waiter sleeps in the
+//              futex and is woken); requests are served in time order. Per item `item_queue`.
+//   stealing   the core protocol (§4.2): lists carried from frame to frame (each worker's next list = the items
+//              it ran, in id order; the first frame: contiguous blocks). The owner claims an item at the
+//              instant it starts it (per item `item_stealing`). An idle worker visits victims in its own
+//              random order: a LockList held by another thief costs one line transfer (`steal_busy`); an empty
+//              list two (`steal_empty`); a steal lowers the victim's End at once, holds the victim's LockList
+//              for `steal`; the thief installs the share (stealable only from then on, else two idle
+//              workers could pass one item back and forth forever) and starts it when the steal ends. After a full round without a share
+//              the thief pauses `idle_round`. It stops when no unclaimed item is left anywhere.
+//   chase-lev  lazy binary splitting from contiguous blocks every frame; an idle worker steals the oldest
+//              (largest) range of a random victim for `steal_chase_lev`; two thieves on one victim within that
+//              time: the later one loses the CAS (`steal_busy`). Per item `item_chase_lev`.
+// Every model adds the per-frame cost of waking and joining P workers (Overheads::frame_ns).
+// Each simulated frame is audited: every item exactly once (the negative control plants a lost update).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/id_range.hpp"
+#include "papers/calibration.hpp"
+#include "papers/cost_trace.hpp"
+#include "schedulers/static_scheduler.hpp"
+
+namespace frontsteal::papers {
+
+enum class Model { static_list, queue, stealing, chase_lev };
+
+struct SimulationOptions {
+  Model model = Model::stealing;
+  WorkerId workers = 2;
+  const sched::Assignment* assignment = nullptr;  // static_list: the lists (required)
+  std::uint64_t seed = 1;                          // victim orders
+  bool plant_lost_steal = false;  // negative control: a thief copies a share but never lowers the victim's End
+};
+
+struct SimulatedRun {
+  double path_ns = 0;
+  std::vector<double> frame_ns;
+  double frames_per_s = 0;
+  double utilization_pct = 0;   // Σ item costs / Σ (frame × P)
+  double imbalance_mean = 0;    // max/mean busy per frame
+  std::uint64_t steals = 0, failed_steals = 0, lock_waits = 0;
+  std::uint64_t audit_failures = 0;  // frames in which some item did not run exactly once
+};
+
+SimulatedRun simulate(const CostTrace& trace, const Overheads& overheads, const SimulationOptions& options);
+
+}  // namespace frontsteal::papers

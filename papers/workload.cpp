@@ -1,0 +1,210 @@
+// workload.cpp — measured runs and trace recording (workload.hpp).
+#include "papers/workload.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <memory>
+#include <numeric>
+#include <stdexcept>
+#include <thread>
+
+#include "core/execution_counter.hpp"
+#include "schedulers/registry.hpp"
+#include "tessellate/scene_generator.hpp"
+
+namespace frontsteal::papers {
+
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+    }
+  }
+  return "unknown CPU";
+}
+
+PathWorkload::PathWorkload(const WorkloadOptions& options) : options_(options) {
+  model_ = tess::load_scene(options.scene, options.data_dir);
+  if (model_.surfaces.empty()) throw std::invalid_argument("scene '" + options.scene + "' has no surfaces");
+  for (const tess::Surface& s : model_.surfaces) prepared_.push_back(tess::prepare_surface(s));
+  buffers_.resize(prepared_.size());
+  triangles_.assign(prepared_.size(), 0);
+  settings_.pixel_tolerance = options.tolerance_px;
+  const tess::Box box = tess::model_box(model_);
+  for (int f = 0; f < options.frames; ++f) {
+    cameras_.push_back(tess::camera_on_path(box, f, options.frames, options.width, options.height));
+    frusta_.push_back(tess::Frustum::of(cameras_.back()));
+  }
+  // The hints of the main job: patch centres, and the cost estimate of the path's first (overview) view.
+  for (const tess::PreparedSurface& p : prepared_) {
+    const glm::dvec3 c = p.box.centre();
+    hints_.centres.push_back({c.x, c.y, c.z});
+    const tess::SurfacePlan plan = tess::plan_surface(p, cameras_[0], frusta_[0], settings_);
+    hints_.costs.push_back(std::max(1.0, tess::estimate_cost(p, plan, settings_)));
+  }
+  prepare_workers(1);
+}
+
+void PathWorkload::prepare_workers(WorkerId workers) {
+  if (scratch_.size() < workers) scratch_.resize(workers);
+}
+
+void PathWorkload::tessellate(int f, ItemId id, WorkerId w) {
+  const tess::SurfaceResult r =
+      tess::tessellate_surface(prepared_[id], cameras_[f], frusta_[f], settings_, scratch_[w], buffers_[id]);
+  triangles_[id] = static_cast<std::uint32_t>(r.triangles);
+}
+
+std::uint64_t PathWorkload::frame_triangles() const {
+  std::uint64_t t = 0;
+  for (auto x : triangles_) t += x;
+  return t;
+}
+
+CostTrace record_cost_trace(PathWorkload& wl, int passes, const std::string& machine, const std::string& commit) {
+  CostTrace t;
+  t.scene = wl.options().scene;
+  t.width = wl.options().width;
+  t.height = wl.options().height;
+  t.tolerance_px = wl.options().tolerance_px;
+  t.passes = passes;
+  t.machine = machine;
+  t.commit = commit;
+  t.centres = wl.hints().centres;
+  t.estimates = wl.hints().costs;
+  const ItemId n = wl.surfaces();
+  // Clock overhead: the time of an empty timed region, subtracted from every sample.
+  double clock_ns = 0;
+  {
+    std::vector<double> v;
+    for (int i = 0; i < 1001; ++i) {
+      const auto a = Clock::now();
+      const auto b = Clock::now();
+      v.push_back(std::chrono::duration<double, std::nano>(b - a).count());
+    }
+    clock_ns = median(v);
+  }
+  std::vector<std::vector<std::vector<double>>> samples(wl.frames(), std::vector<std::vector<double>>(n));
+  for (int pass = -1; pass < passes; ++pass) {  // pass -1 warms caches and buffers, not recorded
+    for (int f = 0; f < wl.frames(); ++f) {
+      for (ItemId id = 0; id < n; ++id) {
+        const auto a = Clock::now();
+        wl.tessellate(f, id, 0);
+        const auto b = Clock::now();
+        if (pass >= 0) {
+          samples[f][id].push_back(std::max(0.0, std::chrono::duration<double, std::nano>(b - a).count() - clock_ns));
+        }
+      }
+    }
+  }
+  t.cost_ns.assign(wl.frames(), std::vector<double>(n));
+  for (int f = 0; f < wl.frames(); ++f) {
+    for (ItemId id = 0; id < n; ++id) {
+      const auto& v = samples[f][id];
+      t.cost_ns[f][id] = std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+    }
+  }
+  return t;
+}
+
+std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptions& o, double* serial_ms) {
+  const ItemId n = wl.surfaces();
+  WorkerId max_p = 1;
+  for (WorkerId p : o.threads) max_p = std::max(max_p, p);
+  wl.prepare_workers(max_p);
+
+  std::vector<std::uint64_t> reference;  // per frame: the serial loop's triangles
+  for (int f = 0; f < wl.frames(); ++f) {
+    for (ItemId id = 0; id < n; ++id) wl.tessellate(f, id, 0);
+    reference.push_back(wl.frame_triangles());
+  }
+
+  struct Cell {
+    MeasuredRun run;
+    std::unique_ptr<sched::Scheduler> instance;
+    double busy = 0, available = 0, imbalance_sum = 0;
+    std::uint64_t frames = 0;
+  };
+  std::vector<Cell> cells;
+  for (WorkerId p : o.threads) {
+    for (const auto& name : o.schedulers) {
+      const sched::SchedulerInfo* info = sched::find_scheduler(name);
+      if (!info) throw std::invalid_argument("unknown scheduler '" + name + "'");
+      Cell c;
+      c.run.scheduler = name;
+      c.run.workers = p;
+      c.instance = info->make({.workers = p, .items = n, .seed = o.seed}, wl.hints());
+      auto warm = [&](ItemId id, WorkerId w) { wl.tessellate(0, id, w); };
+      c.instance->run_frame(warm);
+      cells.push_back(std::move(c));
+    }
+  }
+  ExecutionCounter runs(n);
+  std::vector<double> serial_path;
+  for (int r = 0; r < o.repeats; ++r) {
+    {
+      const auto t0 = Clock::now();
+      for (int f = 0; f < wl.frames(); ++f) {
+        for (ItemId id = 0; id < n; ++id) wl.tessellate(f, id, 0);
+      }
+      serial_path.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    }
+    for (Cell& c : cells) {
+      double total = 0;
+      for (int f = 0; f < wl.frames(); ++f) {
+        auto item = [&](ItemId id, WorkerId w) {
+          runs.record(id);
+          wl.tessellate(f, id, w);
+        };
+        const FrameStats& st = c.instance->run_frame(item);
+        total += static_cast<double>(st.wall_ns) / 1e6;
+        const WorkerFrameStats tot = st.totals();
+        c.busy += static_cast<double>(tot.busy_ns);
+        c.available += static_cast<double>(st.wall_ns) * static_cast<double>(st.workers.size());
+        c.imbalance_sum += st.imbalance();
+        ++c.frames;
+        c.run.steals += tot.steals_succeeded;
+        c.run.lock_waits += tot.lock_waits;
+        const ExecutionAudit audit = runs.audit_and_reset();
+        if (!audit.exactly_once() || wl.frame_triangles() != reference[f]) {
+          throw std::runtime_error(c.run.scheduler + " P=" + std::to_string(c.run.workers) + " frame " +
+                                   std::to_string(f) + ": audit failed (a surface not run exactly once, or the "
+                                   "triangle count differs from the serial loop's)");
+        }
+      }
+      c.run.path_ms.push_back(total);
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));  // let library runtimes settle
+      if (o.progress) {
+        o.progress("repeat " + std::to_string(r + 1) + "/" + std::to_string(o.repeats) + " P=" +
+                   std::to_string(c.run.workers) + " " + c.run.scheduler + ": " + std::to_string(total).substr(0, 6) +
+                   " ms");
+      }
+    }
+  }
+  std::vector<MeasuredRun> out;
+  for (Cell& c : cells) {
+    c.run.median_path_ms = median(c.run.path_ms);
+    c.run.frames_per_s = 1000.0 * wl.frames() / c.run.median_path_ms;
+    c.run.utilization_pct = c.available > 0 ? 100.0 * c.busy / c.available : 0;
+    c.run.imbalance_mean = c.frames ? c.imbalance_sum / static_cast<double>(c.frames) : 0;
+    c.run.busy_ms_per_path = c.busy / 1e6 / static_cast<double>(o.repeats);
+    out.push_back(std::move(c.run));
+  }
+  if (serial_ms) *serial_ms = median(serial_path);
+  return out;
+}
+
+}  // namespace frontsteal::papers

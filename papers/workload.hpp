@@ -1,0 +1,91 @@
+// workload.hpp — the measured side of papers/: a scene tessellated along the camera path by the real
+// schedulers (schedulers/registry.hpp), and the serial per-surface cost trace the simulator replays.
+//
+// The same path and settings as the main job (schedulers/frontsteal_main.cpp): an orbit of the whole model,
+// then a zoom into a corner, 1 px tolerance, 1280x720. Every measured frame is audited (each surface exactly
+// once, triangle count equal to the serial loop's); a failed audit throws.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/id_range.hpp"
+#include "papers/cost_trace.hpp"
+#include "schedulers/scheduler.hpp"
+#include "schedulers/static_scheduler.hpp"
+#include "tessellate/camera_path.hpp"
+#include "tessellate/model.hpp"
+#include "tessellate/surface_tessellator.hpp"
+
+namespace frontsteal::papers {
+
+struct WorkloadOptions {
+  std::string scene = "plant:15906";
+  int frames = 24;
+  int width = 1280, height = 720;
+  double tolerance_px = 1;
+  std::string data_dir;
+};
+
+class PathWorkload {
+ public:
+  explicit PathWorkload(const WorkloadOptions& options);  // throws what load_scene throws
+
+  ItemId surfaces() const noexcept { return static_cast<ItemId>(prepared_.size()); }
+  int frames() const noexcept { return static_cast<int>(cameras_.size()); }
+  const WorkloadOptions& options() const noexcept { return options_; }
+  const sched::WorkloadHints& hints() const noexcept { return hints_; }
+
+  // Tessellates surface `id` for frame `f` with worker w's scratch (w < the largest P prepared for).
+  void tessellate(int f, ItemId id, WorkerId w);
+  void prepare_workers(WorkerId workers);
+  std::uint64_t frame_triangles() const;
+
+ private:
+  WorkloadOptions options_;
+  tess::Model model_;
+  std::vector<tess::PreparedSurface> prepared_;
+  std::vector<tess::TriangleBuffers> buffers_;
+  std::vector<tess::Camera> cameras_;
+  std::vector<tess::Frustum> frusta_;
+  tess::TessellationSettings settings_;
+  std::vector<tess::TessellationScratch> scratch_;
+  std::vector<std::uint32_t> triangles_;
+  sched::WorkloadHints hints_;
+};
+
+// Serial loop over every frame, `passes` times after a warm-up pass; per surface the mean time (the mean,
+// not the median: interrupts and cache misses cost real frames their time too).
+CostTrace record_cost_trace(PathWorkload& workload, int passes, const std::string& machine, const std::string& commit);
+
+struct MeasuredRun {
+  std::string scheduler;
+  WorkerId workers = 0;
+  std::vector<double> path_ms;    // per repeat
+  double median_path_ms = 0;
+  double frames_per_s = 0;        // frames / median path time
+  double utilization_pct = 0;     // Σ busy / Σ (wall × P) over every frame of every repeat
+  double imbalance_mean = 0;      // max/mean busy per frame, averaged
+  double busy_ms_per_path = 0;    // Σ over workers of time inside items, per run of the path (mean of repeats)
+  std::uint64_t steals = 0, lock_waits = 0;
+};
+
+struct MeasureOptions {
+  std::vector<std::string> schedulers;  // registry names
+  std::vector<WorkerId> threads;
+  int repeats = 3;
+  std::uint64_t seed = 1;
+  std::function<void(const std::string&)> progress;
+};
+
+// Interleaved repeats (repeat r of every cell before repeat r+1 of any). Also returns the serial loop's
+// median path time in *serial_ms when given. Throws std::runtime_error on an audit failure.
+std::vector<MeasuredRun> measure_schedulers(PathWorkload& workload, const MeasureOptions& options,
+                                            double* serial_ms = nullptr);
+
+double median(std::vector<double> v);
+std::string cpu_model();
+
+}  // namespace frontsteal::papers

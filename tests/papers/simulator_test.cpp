@@ -1,0 +1,183 @@
+// Tests of papers/simulator.hpp, papers/cost_trace.hpp and papers/calibration.hpp: each model against costs
+// worked out by hand, the stealing model's audit against its planted lost steal, and the file formats.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "papers/calibration.hpp"
+#include "papers/cost_trace.hpp"
+#include "papers/simulator.hpp"
+#include "schedulers/static_assignment.hpp"
+
+namespace fp = frontsteal::papers;
+using frontsteal::ItemId;
+
+namespace {
+
+fp::CostTrace trace_of(std::vector<std::vector<double>> costs) {
+  fp::CostTrace t;
+  t.scene = "hand-made";
+  for (std::size_t i = 0; i < costs.at(0).size(); ++i) {
+    t.centres.push_back({static_cast<double>(i), 0, 0});
+    t.estimates.push_back(1);
+  }
+  t.cost_ns = std::move(costs);
+  return t;
+}
+
+// No scheduler costs at all: the models reduce to list scheduling of the item costs.
+fp::Overheads free_overheads() {
+  fp::Overheads o;
+  for (fp::ModelCosts* m : {&o.static_list, &o.queue, &o.stealing, &o.chase_lev}) *m = {0, 0, 0};
+  o.line_transfer_ns = o.lock_uncontended_ns = o.lock_handoff_ns = o.fence_ns = o.idle_round_ns = 0;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("static model: the frame lasts as long as the most loaded list, plus the frame cost") {
+  const fp::CostTrace t = trace_of({{10, 20, 30, 40}, {1, 1, 1, 1}});
+  fp::Overheads o = free_overheads();
+  o.static_list = {.item_ns = 2, .frame_fixed_ns = 100, .second_worker_ns = 50};
+  const frontsteal::sched::Assignment lists = {{0, 3}, {1, 2}};
+  const fp::SimulatedRun r = fp::simulate(t, o, {.model = fp::Model::static_list, .workers = 2, .assignment = &lists});
+  REQUIRE(r.frame_ns.size() == 2);
+  CHECK(r.frame_ns[0] == Approx(std::max(10 + 40 + 4, 20 + 30 + 4) + 150));
+  CHECK(r.frame_ns[1] == Approx(1 + 2 + 1 + 2 + 150));
+  CHECK(r.audit_failures == 0);
+}
+
+TEST_CASE("every model at P = 1 is the serial sum plus its per-item and per-frame costs") {
+  const fp::CostTrace t = trace_of({{5, 7, 11, 13, 17}});
+  fp::Overheads o = free_overheads();
+  o.queue = o.stealing = o.chase_lev = o.static_list = {.item_ns = 1, .frame_fixed_ns = 10, .second_worker_ns = 0};
+  const auto lists = frontsteal::sched::round_robin_assignment(5, 1);
+  for (fp::Model m : {fp::Model::static_list, fp::Model::queue, fp::Model::stealing, fp::Model::chase_lev}) {
+    const fp::SimulatedRun r = fp::simulate(t, o, {.model = m, .workers = 1, .assignment = &lists});
+    INFO("model " << static_cast<int>(m));
+    CHECK(r.path_ns == Approx(53 + 5 + 10));
+    CHECK(r.audit_failures == 0);
+  }
+}
+
+TEST_CASE("stealing: an idle worker takes the second half of a busy worker's list, and lists carry over") {
+  // Worker 0's block holds all the expensive items; worker 1's block is free.
+  std::vector<double> costs(8, 0);
+  for (int i = 0; i < 4; ++i) costs[i] = 100;
+  const fp::CostTrace t = trace_of({costs, costs});
+  const fp::Overheads o = free_overheads();
+  const fp::SimulatedRun r = fp::simulate(t, o, {.model = fp::Model::stealing, .workers = 2});
+  CHECK(r.audit_failures == 0);
+  CHECK(r.steals >= 1);
+  // Frame 0: worker 0 starts item 0 at t=0; worker 1 runs its four free items at once, then steals items 2..3
+  // (the second half of 1..3, victim keeps 1): 200 ns. Frame 1 starts from those lists: balanced, 200 ns.
+  CHECK(r.frame_ns[0] == Approx(200));
+  CHECK(r.frame_ns[1] == Approx(200));
+  CHECK(r.utilization_pct == Approx(100));
+}
+
+TEST_CASE("stealing: the audit catches a steal that never lowers the victim's End (negative control)") {
+  std::vector<double> costs(64, 10);
+  for (int i = 0; i < 32; ++i) costs[i] = 1000;
+  const fp::CostTrace t = trace_of({costs});
+  const fp::Overheads o = free_overheads();
+  const fp::SimulatedRun sound = fp::simulate(t, o, {.model = fp::Model::stealing, .workers = 4});
+  const fp::SimulatedRun planted =
+      fp::simulate(t, o, {.model = fp::Model::stealing, .workers = 4, .plant_lost_steal = true});
+  CHECK(sound.audit_failures == 0);
+  CHECK(planted.audit_failures == 1);
+}
+
+TEST_CASE("queue: a saturated lock serializes the claims") {
+  // 1000 free items, grain N/(100P) = 5 at P = 2: 200 acquisitions; each waiting one costs the handoff.
+  const fp::CostTrace t = trace_of({std::vector<double>(1000, 0)});
+  fp::Overheads o = free_overheads();
+  o.lock_uncontended_ns = 10;
+  o.lock_handoff_ns = 100;
+  const fp::SimulatedRun r = fp::simulate(t, o, {.model = fp::Model::queue, .workers = 2});
+  CHECK(r.audit_failures == 0);
+  CHECK(r.lock_waits > 0);
+  CHECK(r.path_ns >= 200 * 10);
+  CHECK(r.path_ns <= 200 * 100 + 100);
+}
+
+TEST_CASE("Chase-Lev and queue balance what round robin cannot") {
+  std::vector<double> costs(400, 1);
+  for (int i = 0; i < 100; ++i) costs[i * 4] = 400;  // every 4th item is expensive: round robin puts them on worker 0
+  const fp::CostTrace t = trace_of({costs});
+  fp::Overheads o = free_overheads();
+  const auto rr = frontsteal::sched::round_robin_assignment(400, 4);
+  const double static_ns =
+      fp::simulate(t, o, {.model = fp::Model::static_list, .workers = 4, .assignment = &rr}).path_ns;
+  for (fp::Model m : {fp::Model::queue, fp::Model::stealing, fp::Model::chase_lev}) {
+    const fp::SimulatedRun r = fp::simulate(t, o, {.model = m, .workers = 4});
+    INFO("model " << static_cast<int>(m));
+    CHECK(r.audit_failures == 0);
+    CHECK(r.path_ns < 0.5 * static_ns);
+  }
+}
+
+TEST_CASE("cost traces survive a round trip, and a truncated trace is refused with its line") {
+  const auto dir = std::filesystem::temp_directory_path() / "frontsteal-trace-test";
+  std::filesystem::create_directories(dir);
+  fp::CostTrace t = trace_of({{1, 2, 3}, {4, 5, 6}});
+  t.machine = "test machine";
+  fp::write_cost_trace(t, dir / "t.txt");
+  const fp::CostTrace back = fp::read_cost_trace(dir / "t.txt");
+  CHECK(back.cost_ns == t.cost_ns);
+  CHECK(back.machine == "test machine");
+  CHECK(back.frame_cost_ns(1) == Approx(15));
+  {  // drop the last frame line
+    std::ifstream in(dir / "t.txt");
+    std::ofstream out(dir / "cut.txt");
+    std::string line, previous;
+    bool first = true;
+    while (std::getline(in, line)) {
+      if (!first) out << previous << '\n';
+      previous = line;
+      first = false;
+    }
+  }
+  CHECK_THROWS_WITH(fp::read_cost_trace(dir / "cut.txt"), Catch::Contains("truncated"));
+  {
+    std::ofstream bad(dir / "bad.txt");
+    bad << "frontsteal-cost-trace 1\nsurfaces 2\nframes 1\nsurface 0 0 0 0 1\nsurface 1 0 0 0 1\nframe 0 5 x\n";
+  }
+  CHECK_THROWS_WITH(fp::read_cost_trace(dir / "bad.txt"), Catch::Contains("bad.txt:6"));
+  CHECK_THROWS_AS(fp::read_cost_trace(dir / "missing.txt"), fp::TraceError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("calibration files survive a round trip; unknown keys are refused") {
+  const auto dir = std::filesystem::temp_directory_path() / "frontsteal-calibration-test";
+  std::filesystem::create_directories(dir);
+  fp::Overheads o;
+  o.stealing.item_ns = 7.5;
+  o.line_transfer_ns = 55;
+  o.assumed = false;
+  fp::write_overheads(o, dir / "c.txt");
+  const fp::Overheads back = fp::read_overheads(dir / "c.txt");
+  CHECK(back.stealing.item_ns == Approx(7.5));
+  CHECK(back.line_transfer_ns == Approx(55));
+  CHECK_FALSE(back.assumed);
+  {
+    std::ofstream bad(dir / "bad.txt");
+    bad << "frontsteal-calibration 1\nwarp_factor 9\n";
+  }
+  CHECK_THROWS_WITH(fp::read_overheads(dir / "bad.txt"), Catch::Contains("warp_factor"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("stealing and Chase-Lev terminate when single items are left to steal") {
+  // Free items and more workers than items: idle workers must not pass one item back and forth forever.
+  const fp::CostTrace t = trace_of({{0, 0, 0}, {5, 0, 0}, {0, 0, 9}});
+  fp::Overheads o = free_overheads();
+  o.line_transfer_ns = 1;
+  for (fp::Model m : {fp::Model::stealing, fp::Model::chase_lev}) {
+    const fp::SimulatedRun r = fp::simulate(t, o, {.model = m, .workers = 4});
+    INFO("model " << static_cast<int>(m));
+    CHECK(r.audit_failures == 0);
+    CHECK(r.frame_ns.size() == 3);
+  }
+}
