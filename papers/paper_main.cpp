@@ -404,7 +404,7 @@ int run_table1(const Options& o, const fp::Overheads& ov, const Reporter& rep) {
   js << "  ]\n}\n";
   // Plot: utilization, grouped by model: paper (P=25), simulated (P=25), measured (P=cores).
   std::ostringstream dat;
-  dat << "model paper_rr paper_part sim_rr sim_spatial meas_rr meas_spatial\n";
+  dat << "# model paper_rr paper_part sim_rr sim_spatial meas_rr meas_spatial\n";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const Row& r = rows[i];
     const bool paired = i < fp::kPaperTable1.size() && o.scenes.empty();
@@ -742,7 +742,7 @@ int run_table2(const Options& o, const Reporter& rep) {
         " tess/s | updates/s | avg lag | max lag | updates/tess |\n"
      << "|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|\n";
   csv << "source,scene,paper_model,surfaces,tessellations_per_s,updates_per_s,average_lag,max_lag\n";
-  dat << "model paper_tess paper_upd ours_tess ours_upd paper_lag ours_lag\n";
+  dat << "# model paper_tess paper_upd ours_tess ours_upd paper_lag ours_lag\n";
   js << "{\n  \"artifact\": \"table2\",\n  \"kind\": \"measured\",\n  \"machine\": \"" << machine()
      << "\",\n  \"commit\": \"" << FRONTSTEAL_GIT_COMMIT << "\",\n  \"date\": \"" << today() << "\",\n  \"rows\": [\n";
   for (std::size_t i = 0; i < stats.size(); ++i) {
