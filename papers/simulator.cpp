@@ -83,6 +83,16 @@ FrameOutcome run_queue(const std::vector<double>& cost, WorkerId p, const Overhe
   return out;
 }
 
+// A failed steal attempt (busy or empty victim): its cost, plus the idle pause after a whole round of failures.
+double failed_attempt(double cost, WorkerId& failures_in_round, WorkerId p, const Overheads& o, SimulatedRun& totals) {
+  ++totals.failed_steals;
+  if (++failures_in_round >= p - 1) {
+    failures_in_round = 0;
+    cost += o.idle_round_ns;
+  }
+  return cost;
+}
+
 // The stealing protocol's state that survives frames: each worker's list.
 struct StealingState {
   std::vector<std::vector<ItemId>> lists;
@@ -136,13 +146,9 @@ FrameOutcome run_stealing(const std::vector<double>& cost, StealingState& state,
     }
     const std::vector<WorkerId>& order = state.victim_orders[e.worker];
     Worker& victim = ws[order[me.next_victim++ % order.size()]];
-    double spent = 0;
-    if (victim.lock_free_at > e.at) {
-      spent = o.steal_busy_ns();
-      ++totals.failed_steals;
-    } else if (victim.front >= victim.end) {
-      spent = o.steal_empty_ns();
-      ++totals.failed_steals;
+    if (victim.lock_free_at > e.at || victim.front >= victim.end) {
+      const double cost = victim.lock_free_at > e.at ? o.steal_busy_ns() : o.steal_empty_ns();
+      events.push({e.at + failed_attempt(cost, me.failures_in_round, p, o, totals), e.worker});
     } else {  // steal the second half; End is lowered at once, the share is ours when the steal's time is over
       const std::size_t mid = victim.front + (victim.end - victim.front) / 2;
       me.share.assign(victim.list.begin() + static_cast<std::ptrdiff_t>(mid),
@@ -152,13 +158,7 @@ FrameOutcome run_stealing(const std::vector<double>& cost, StealingState& state,
       me.failures_in_round = 0;
       ++totals.steals;
       events.push({e.at + o.steal_ns(), e.worker});
-      continue;
     }
-    if (++me.failures_in_round >= p - 1) {
-      me.failures_in_round = 0;
-      spent += o.idle_round_ns;
-    }
-    events.push({e.at + spent, e.worker});
   }
   return out;
 }
@@ -224,26 +224,16 @@ FrameOutcome run_chase_lev(const std::vector<double>& cost, WorkerId p, const Ov
     WorkerId v = other(rng);
     if (v >= e.worker) ++v;
     Worker& victim = ws[v];
-    double spent = 0;
-    if (victim.top >= victim.deque.size()) {
-      spent = o.steal_empty_ns();
-      ++totals.failed_steals;
-    } else if (victim.top_busy_until > e.at) {
-      spent = o.steal_busy_ns();
-      ++totals.failed_steals;
+    if (victim.top >= victim.deque.size() || victim.top_busy_until > e.at) {
+      const double cost = victim.top >= victim.deque.size() ? o.steal_empty_ns() : o.steal_busy_ns();
+      events.push({e.at + failed_attempt(cost, me.failures_in_round, p, o, totals), e.worker});
     } else {
       me.stolen = victim.deque[victim.top++];
       victim.top_busy_until = e.at + o.steal_chase_lev_ns();
       me.failures_in_round = 0;
       ++totals.steals;
       events.push({e.at + o.steal_chase_lev_ns(), e.worker});
-      continue;
     }
-    if (++me.failures_in_round >= p - 1) {
-      me.failures_in_round = 0;
-      spent += o.idle_round_ns;
-    }
-    events.push({e.at + spent, e.worker});
   }
   return out;
 }

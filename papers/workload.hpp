@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/id_range.hpp"
+#include "core/machine_info.hpp"
 #include "papers/cost_trace.hpp"
 #include "schedulers/scheduler.hpp"
 #include "schedulers/static_scheduler.hpp"
@@ -85,7 +86,7 @@ struct MeasureOptions {
 std::vector<MeasuredRun> measure_schedulers(PathWorkload& workload, const MeasureOptions& options,
                                             double* serial_ms = nullptr);
 
-double median(std::vector<double> v);
-std::string cpu_model();
+using frontsteal::cpu_model;  // core/machine_info.hpp
+using frontsteal::median;
 
 }  // namespace frontsteal::papers

@@ -27,6 +27,7 @@
 
 #include "core/cli_args.hpp"
 #include "core/execution_counter.hpp"
+#include "core/machine_info.hpp"
 #include "schedulers/registry.hpp"
 #include "schedulers/static_assignment.hpp"
 #include "tessellate/camera_path.hpp"
@@ -45,6 +46,9 @@ namespace sc = frontsteal::sched;
 namespace ts = frontsteal::tess;
 
 namespace {
+
+using frontsteal::cpu_model;
+using frontsteal::median;
 
 constexpr std::string_view kProgram = "frontsteal";
 
@@ -174,17 +178,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      const auto colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
-    }
-  }
-  return "unknown CPU";
-}
 
 std::string json_escape(const std::string& s) {
   std::string out;
@@ -196,12 +189,6 @@ std::string json_escape(const std::string& s) {
   return out;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
 
 // The workload: the scene prepared once, its per-frame views, and one output buffer per surface.
 struct Workload {
