@@ -7,11 +7,17 @@
 //      holes in decreasing order of their largest u; from a hole's rightmost vertex M, the bridge goes to the
 //      nearest vertex V (outer boundary or already-joined holes) such that the segment MV crosses no edge. The
 //      polygon then runs …V, M, (around the hole), M, V… — weakly simple, still counter-clockwise.
+//      Once a hole is joined, V occurs twice in the ring (three times after a second bridge to it, …), and
+//      each copy owns a different sector of the angle at V. The bridge must leave from the copy whose sector
+//      contains the direction V→M; splicing it at another copy makes the ring cross itself at V, and ear
+//      clipping then covers holes and overlaps itself (the wave-1 defect: cells with three or more holes).
 //   2. Ears are clipped: a convex vertex whose triangle contains no other (non-coincident) vertex. If floating
 //      point leaves no strict ear (nearly collinear chains), the most convex vertex is clipped, so the routine
 //      always terminates with n − 2 triangles for n vertices.
-// Vertices carry an opaque id (the caller's vertex index) so the output is a list of id triples, counter-
-// clockwise in (u, v). Scratch vectors are passed in and keep their capacity across calls.
+// Every clipped triangle is emitted, degenerate ones (zero or rounding-negative area) included, so that the
+// triangles' edges always cancel to the ring's boundary; the caller audits the result (tiling_audit.hpp) and
+// drops the degenerate ones. Vertices carry an opaque id (the caller's vertex index) so the output is a list
+// of id triples, counter-clockwise in (u, v). Scratch vectors are passed in and keep their capacity.
 #pragma once
 
 #include <algorithm>
@@ -49,14 +55,28 @@ inline bool segments_cross(const glm::dvec2& a, const glm::dvec2& b, const glm::
   return on(a, b, c, d1) || on(a, b, d, d2) || on(c, d, a, d3) || on(c, d, b, d4);
 }
 
+// Is direction d, leaving the ring's vertex v, inside the sector of the polygon at v? The ring runs
+// counter-clockwise with the material on its left, so the sector is swept counter-clockwise from the outgoing
+// edge (to `next`) to the incoming one (back to `prev`); a reflex vertex's sector is wider than a half-turn.
+inline bool in_sector(const glm::dvec2& prev, const glm::dvec2& v, const glm::dvec2& next, const glm::dvec2& d) {
+  const glm::dvec2 out = next - v, back = prev - v;
+  const auto cross = [](const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; };
+  if (cross(out, back) > 0) return cross(out, d) > 0 && cross(d, back) > 0;
+  return cross(out, d) > 0 || cross(d, back) > 0;
+}
+
 inline bool in_triangle(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
   return cross2(a, b, p) >= 0 && cross2(b, c, p) >= 0 && cross2(c, a, p) >= 0;
 }
 
 }  // namespace detail
 
+// Which copy of a repeated bridge end the bridge leaves from (step 1). `sector` is the rule; `first_copy` is the
+// wave-1 defect, kept only so the negative controls can plant it and show that the tiling audit catches it.
+enum class BridgeCopy : std::uint8_t { sector, first_copy };
+
 // Splices each hole into `outer` with a bridge (step 1 above). `outer` is modified in place.
-inline void join_holes(PolygonRing& outer, std::vector<PolygonRing>& holes) {
+inline void join_holes(PolygonRing& outer, std::vector<PolygonRing>& holes, BridgeCopy copy = BridgeCopy::sector) {
   std::sort(holes.begin(), holes.end(), [](const PolygonRing& a, const PolygonRing& b) {
     const auto max_u = [](const PolygonRing& r) {
       double m = -std::numeric_limits<double>::infinity();
@@ -102,6 +122,16 @@ inline void join_holes(PolygonRing& outer, std::vector<PolygonRing>& holes) {
       }
     }
     if (best == outer.size()) best = 0;  // degenerate input: join anyway; ear clipping still terminates
+    if (copy == BridgeCopy::sector) {
+      const std::size_t n = outer.size();
+      for (std::size_t k = 0; k < n; ++k) {
+        if (outer[k].uv != outer[best].uv) continue;
+        if (detail::in_sector(outer[(k + n - 1) % n].uv, outer[k].uv, outer[(k + 1) % n].uv, mp - outer[k].uv)) {
+          best = k;
+          break;
+        }
+      }
+    }
     merged.clear();
     merged.insert(merged.end(), outer.begin(), outer.begin() + static_cast<std::ptrdiff_t>(best) + 1);
     for (std::size_t k = 0; k <= hole.size(); ++k) merged.push_back(hole[(m + k) % hole.size()]);
@@ -111,7 +141,7 @@ inline void join_holes(PolygonRing& outer, std::vector<PolygonRing>& holes) {
   }
 }
 
-// Ear clipping (step 2 above) of a counter-clockwise ring; appends id triples to `triangles`.
+// Ear clipping (step 2 above) of a counter-clockwise ring; appends its n − 2 id triples to `triangles`.
 inline void clip_ears(const PolygonRing& ring, std::vector<std::uint32_t>& triangles, std::vector<std::uint32_t>& next,
                       std::vector<std::uint32_t>& prev) {
   const std::size_t n = ring.size();
@@ -154,18 +184,14 @@ inline void clip_ears(const PolygonRing& ring, std::vector<std::uint32_t>& trian
       }
     }
     const std::uint32_t a = prev[found], c = next[found];
-    if (detail::cross2(ring[a].uv, ring[found].uv, ring[c].uv) > 0) {
-      triangles.insert(triangles.end(), {ring[a].id, ring[found].id, ring[c].id});
-    }
+    triangles.insert(triangles.end(), {ring[a].id, ring[found].id, ring[c].id});
     next[a] = c;
     prev[c] = a;
     cursor = c;
     --remaining;
   }
   const std::uint32_t a = prev[cursor], c = next[cursor];
-  if (detail::cross2(ring[a].uv, ring[cursor].uv, ring[c].uv) > 0) {
-    triangles.insert(triangles.end(), {ring[a].id, ring[cursor].id, ring[c].id});
-  }
+  triangles.insert(triangles.end(), {ring[a].id, ring[cursor].id, ring[c].id});
 }
 
 }  // namespace frontsteal::tess

@@ -21,6 +21,11 @@
 //      (trim_region.hpp); full cells give two triangles split by the diagonal, partial cells are ear-clipped
 //      (polygon_triangulation.hpp). Grid corners and trim points each become one vertex, shared by every
 //      triangle that uses them, so there are no cracks inside a patch.
+//   6. Every trimmed surface audits itself (SurfaceResult): each piece's triangles must tile the piece exactly
+//      (tiling_audit.hpp: no overlap, no covered hole, no gap), every piece must lie in its cell (so pieces of
+//      different cells cannot overlap), and the triangles' (u, v) area must equal the area enclosed by this
+//      frame's trim polylines, computed from the polylines alone by the shoelace formula (independent of the
+//      region tracer). Violations are counted as inconsistencies; callers fail on any.
 // A pure function of (surface, camera, settings): it can run on any worker, in any order, and twice without
 // harm. Buffers and scratch keep their capacity across frames: no allocation in steady state.
 #pragma once
@@ -39,9 +44,15 @@
 #include "tessellate/model.hpp"
 #include "tessellate/polygon_triangulation.hpp"
 #include "tessellate/step_sizes.hpp"
+#include "tessellate/tiling_audit.hpp"
 #include "tessellate/trim_region.hpp"
 
 namespace frontsteal::tess {
+
+// Negative controls only: a known triangulation defect that tests plant to show the per-surface audit (step 6)
+// catches it. `bridge_to_first_copy` is the wave-1 defect (polygon_triangulation.hpp, step 1); `drop_ear`
+// leaves out the first triangle of every piece with more than one.
+enum class PlantedDefect : std::uint8_t { none, bridge_to_first_copy, drop_ear };
 
 struct TessellationSettings {
   double pixel_tolerance = 1.0;   // largest screen-space deviation of the triangles from the surface, pixels
@@ -50,6 +61,7 @@ struct TessellationSettings {
   int max_trim_steps = 128;       // per trim segment
   bool frustum_culling = true;
   bool back_face_culling = true;  // solids only
+  PlantedDefect planted_defect = PlantedDefect::none;  // tests only
 };
 
 enum class Culled : std::uint8_t { no, frustum, back_face };
@@ -173,7 +185,13 @@ struct SurfaceResult {
   std::uint32_t triangles = 0;
   std::uint32_t trim_points = 0;
   std::uint32_t partial_cells = 0;
-  std::uint32_t inconsistencies = 0;  // trim input the region tracer could not place (crossing loops)
+  std::uint32_t trace_failures = 0;     // trim input the region tracer could not place (crossing loops)
+  std::uint32_t tiling_violations = 0;  // pieces not tiled exactly by their triangles, or outside their cell
+  std::uint32_t area_mismatches = 0;    // 1 when the triangles' (u, v) area is not the trim polylines' area
+  double triangle_area = 0;             // (u, v) area of the emitted triangles (trimmed surfaces)
+  double trimmed_area = 0;              // (u, v) area enclosed by this frame's trim polylines (shoelace)
+  // Everything the per-surface audit (step 6) found wrong: 0 for a correct tessellation.
+  std::uint32_t inconsistencies() const noexcept { return trace_failures + tiling_violations + area_mismatches; }
 };
 
 // Per-worker scratch: everything a surface's tessellation needs, reused across surfaces and frames.
@@ -186,6 +204,7 @@ struct TessellationScratch {
   PolygonRing ring;
   std::vector<PolygonRing> holes;
   std::vector<std::uint32_t> ring_triangles, next, prev;
+  TilingAudit tiling;
   static constexpr std::uint32_t kNone = 0xffff'ffffu;
 };
 
@@ -225,6 +244,15 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
   }
   scratch.u_lines.resize(static_cast<std::size_t>(nu + 1));
   scratch.v_lines.resize(static_cast<std::size_t>(nv + 1));
+  // The audit's reference area: the polylines the tracer gets, clamped to the domain as it clamps them.
+  double perimeter = 0;
+  for (const Polygon2& poly : scratch.loops) {
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const glm::dvec2 p = glm::clamp(poly[k], 0.0, 1.0), q = glm::clamp(poly[(k + 1) % poly.size()], 0.0, 1.0);
+      result.trimmed_area += 0.5 * (p.x * q.y - q.x * p.y);
+      perimeter += glm::length(q - p);
+    }
+  }
   for (int i = 0; i <= nu; ++i) scratch.u_lines[i] = static_cast<double>(i) / nu;
   for (int j = 0; j <= nv; ++j) scratch.v_lines[j] = static_cast<double>(j) / nv;
   scratch.u_lines[nu] = scratch.v_lines[nv] = 1.0;
@@ -259,6 +287,10 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
     return slot;
   };
   const auto corner_id = [nv](int i, int j) { return GridTrimmer::kCornerBit | static_cast<std::uint32_t>(i * (nv + 1) + j); };
+  const auto position = [&trimmer](std::uint32_t id) { return trimmer.position(id); };
+  const double cell_area = 1.0 / (static_cast<double>(nu) * nv);
+  const double degenerate_area2 = 1e-12 * cell_area;
+  const double slack = 1e-9 / std::max(nu, nv);  // a piece's vertices may sit this far outside its cell
 
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
@@ -268,24 +300,53 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
           const std::uint32_t a = vertex(corner_id(i, j)), b = vertex(corner_id(i + 1, j));
           const std::uint32_t c = vertex(corner_id(i + 1, j + 1)), d = vertex(corner_id(i, j + 1));
           out.indices.insert(out.indices.end(), {a, b, c, a, c, d});
+          result.triangle_area += cell_area;
           break;
         }
         case CellKind::partial: {
           ++result.partial_cells;
+          const double u0 = scratch.u_lines[i] - slack, u1 = scratch.u_lines[i + 1] + slack;
+          const double v0 = scratch.v_lines[j] - slack, v1 = scratch.v_lines[j + 1] + slack;
+          const auto in_cell = [&](const PolygonRing& ring) {
+            return std::all_of(ring.begin(), ring.end(), [&](const PolygonVertex& p) {
+              return p.uv.x >= u0 && p.uv.x <= u1 && p.uv.y >= v0 && p.uv.y <= v1;
+            });
+          };
           for (const TracedPiece& piece : trimmer.trace(i, j)) {
             scratch.ring = piece.outer;
             scratch.holes.assign(piece.holes.begin(), piece.holes.end());
-            if (!scratch.holes.empty()) join_holes(scratch.ring, scratch.holes);
+            if (!scratch.holes.empty()) {
+              join_holes(scratch.ring, scratch.holes,
+                         settings.planted_defect == PlantedDefect::bridge_to_first_copy ? BridgeCopy::first_copy
+                                                                                         : BridgeCopy::sector);
+            }
             scratch.ring_triangles.clear();
             clip_ears(scratch.ring, scratch.ring_triangles, scratch.next, scratch.prev);
-            for (std::uint32_t id : scratch.ring_triangles) out.indices.push_back(vertex(id));
+            if (settings.planted_defect == PlantedDefect::drop_ear && scratch.ring_triangles.size() > 3) {
+              scratch.ring_triangles.erase(scratch.ring_triangles.begin(), scratch.ring_triangles.begin() + 3);
+            }
+            const bool exact = scratch.tiling.check(piece.outer, piece.holes, scratch.ring_triangles, position,
+                                                    degenerate_area2) == TilingVerdict::exact;
+            const bool inside = in_cell(piece.outer) && std::all_of(piece.holes.begin(), piece.holes.end(), in_cell);
+            if (!exact || !inside) ++result.tiling_violations;
+            for (std::size_t t = 0; t < scratch.ring_triangles.size(); t += 3) {
+              const std::uint32_t* tri = &scratch.ring_triangles[t];
+              const double area2 = detail::cross2(position(tri[0]), position(tri[1]), position(tri[2]));
+              if (area2 <= degenerate_area2) continue;  // degenerate: it only carried edges for the audit
+              out.indices.insert(out.indices.end(), {vertex(tri[0]), vertex(tri[1]), vertex(tri[2])});
+              result.triangle_area += 0.5 * area2;
+            }
           }
           break;
         }
       }
     }
   }
-  result.inconsistencies = static_cast<std::uint32_t>(trimmer.inconsistencies());
+  result.trace_failures = static_cast<std::uint32_t>(trimmer.inconsistencies());
+  // Nudging trim points off grid lines (trim_region.hpp, step 1) moves each by at most 1e-6 of a cell, which
+  // changes the enclosed area by at most perimeter · 1e-6 · cell size; anything beyond twice that is a defect.
+  const double area_tolerance = 1e-12 + 2e-6 * perimeter / std::min(nu, nv);
+  if (std::abs(result.triangle_area - result.trimmed_area) > area_tolerance) result.area_mismatches = 1;
   result.triangles = static_cast<std::uint32_t>(out.triangle_count());
   return result;
 }
@@ -297,7 +358,9 @@ inline SurfaceResult tessellate_surface(const PreparedSurface& s, const Camera& 
   const SurfacePlan plan = plan_surface(s, camera, frustum, settings);
   if (plan.culled != Culled::no) {
     out.clear();
-    return {plan.culled, {}, 0, 0, 0, 0};
+    SurfaceResult culled;
+    culled.culled = plan.culled;
+    return culled;
   }
   if (s.trimmed()) return tessellate_trimmed(s, plan, settings, scratch, out);
   tessellate_untrimmed(s.surface->patch, plan.steps, out, scratch.v_basis);

@@ -74,7 +74,7 @@ TEST_CASE("a whole generated frame tessellates without trimming inconsistencies"
   for (const ts::Surface& s : m.surfaces) {
     const ts::SurfaceResult r = ts::tessellate_surface(ts::prepare_surface(s), cam, frustum, settings, scratch, out);
     INFO(s.name);
-    REQUIRE(r.inconsistencies == 0);
+    REQUIRE(r.inconsistencies() == 0);
     triangles += r.triangles;
     culled += r.culled != ts::Culled::no;
     partial += r.partial_cells;

@@ -113,7 +113,7 @@ TEST_CASE("screen-space deviation stays within the pixel tolerance, trimmed and 
       settings.pixel_tolerance = tol;
       const ts::SurfaceResult r = ts::tessellate_surface(prepared, cam, ts::Frustum::of(cam), settings, scratch, tri);
       if (r.culled != ts::Culled::no) continue;
-      REQUIRE(r.inconsistencies == 0);
+      REQUIRE(r.inconsistencies() == 0);
       const DeviationProbe probe = probe_deviation(s.patch, tri, cam, rng, 400);
       probed += probe.samples > 0;
       INFO("trial " << trial << " degree " << du << "x" << dv << (rational ? " rational" : "") << (trimmed ? " trimmed" : "")
@@ -166,7 +166,7 @@ TEST_CASE("a plate with a circular hole: no triangle in the hole, area converges
     settings.pixel_tolerance = tol;
     const ts::SurfacePlan plan = ts::plan_surface(prepared, cam, ts::Frustum::of(cam), settings);
     const ts::SurfaceResult r = ts::tessellate_trimmed(prepared, plan, settings, scratch, tri);
-    REQUIRE(r.inconsistencies == 0);
+    REQUIRE(r.inconsistencies() == 0);
     double area = 0;
     double deepest = 0;  // how far a triangle's centroid reaches into the hole
     for (std::size_t t = 0; t < tri.indices.size(); t += 3) {
