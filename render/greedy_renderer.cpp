@@ -35,6 +35,9 @@ struct Session {
   std::vector<std::vector<tess::TriangleBuffers>> buffers;  // [slot][surface]
   std::vector<std::vector<int>> slot_view;  // [component][slot]: path frame the slot was tessellated for
   std::unique_ptr<Publication> publication;
+  // Surface tessellations whose own audit failed (surface_tessellator.hpp, step 6); tessellators add, the
+  // driver reads after they stopped. Relaxed: a count, ordered by the threads' join.
+  std::atomic<std::uint64_t> inconsistencies{0};
 
   Session(const tess::Model& m, const GreedyOptions& o) : model(m), options(o), box(tess::model_box(m)) {
     int components = 0;
@@ -67,7 +70,9 @@ struct Session {
   // Tessellator: one surface into its component's back slot, then the component's count-down (and swap).
   void tessellate(ItemId id, const tess::Camera& camera, const tess::Frustum& frustum, tess::TessellationScratch& scratch) {
     const auto c = static_cast<ComponentId>(model.surfaces[id].component);
-    tess::tessellate_surface(prepared[id], camera, frustum, options.settings, scratch, buffers[publication->back_slot(c)][id]);
+    const tess::SurfaceResult r =
+        tess::tessellate_surface(prepared[id], camera, frustum, options.settings, scratch, buffers[publication->back_slot(c)][id]);
+    if (r.inconsistencies() > 0) inconsistencies.fetch_add(1, std::memory_order::relaxed);
     publication->finish_surface(c);
   }
 };
@@ -273,6 +278,7 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
   }
   stats.seconds = seconds_since(start);
   stats.updates = o.updates;
+  stats.tessellation_inconsistencies = s.inconsistencies.load(std::memory_order::relaxed);
 
   // Statistics.
   double lag = 0, triangles = 0;

@@ -75,6 +75,7 @@ struct GreedyStats {
   std::uint64_t tessellation_frames = 0;
   std::uint64_t surfaces_tessellated = 0;
   std::uint64_t driver_waits = 0;
+  std::uint64_t tessellation_inconsistencies = 0;  // surface tessellations that failed their own audit
   double updates_per_second = 0;
   double tessellations_per_second = 0;  // whole-model tessellation frames per second
   double surfaces_per_second = 0;

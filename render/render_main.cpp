@@ -175,6 +175,8 @@ int main(int argc, char** argv) {
      << std::thread::hardware_concurrency() << " hardware threads.\n\n"
      << "- renderer: " << st.renderer << "\n- mode: " << st.mode << "\n- display rate asked: "
      << (o.greedy.display_rate > 0 ? fixed(o.greedy.display_rate, 1) + " updates/s" : std::string("as fast as possible"))
+     << "\n- tessellation audit (trimmed pieces tiled exactly, (u, v) area = trim-loop area): "
+     << st.tessellation_inconsistencies << " failing surface tessellations"
      << "\n\n| updates/s | tessellations/s | surfaces/s | avg lag (frames) | max lag | triangles/update | driver waits | seconds |\n"
      << "|---|---|---|---|---|---|---|---|\n"
      << "| " << fixed(st.updates_per_second, 2) << " | " << fixed(st.tessellations_per_second, 2) << " | "
@@ -200,7 +202,8 @@ int main(int argc, char** argv) {
      << st.tessellations_per_second << ", \"surfaces_per_second\": " << st.surfaces_per_second
      << ", \"tessellation_frames\": " << st.tessellation_frames << ", \"mean_lag\": " << st.mean_lag
      << ", \"max_lag\": " << st.max_lag << ", \"mean_triangles\": " << st.mean_triangles << ", \"driver_waits\": "
-     << st.driver_waits << ",\n  \"quality\": [";
+     << st.driver_waits << ", \"tessellation_inconsistencies\": " << st.tessellation_inconsistencies
+     << ",\n  \"quality\": [";
   for (std::size_t k = 0; k < st.quality.size(); ++k) {
     const rd::QualitySample& q = st.quality[k];
     js << (k ? ", " : "") << "{\"update\": " << q.update << ", \"mean_lag\": " << q.mean_lag << ", \"psnr_db\": "
@@ -228,5 +231,10 @@ int main(int argc, char** argv) {
   }
   std::cout << md.str();
   if (!o.quiet) std::cerr << kProgram << ": wrote " << o.out << "/render.{md,json,csv}, render-lag.png and the PNG frames\n";
+  if (st.tessellation_inconsistencies > 0) {
+    std::cerr << kProgram << ": AUDIT FAILED: " << st.tessellation_inconsistencies
+              << " surface tessellations failed their audit (overlapping triangles, covered holes or a wrong area)\n";
+    return 1;
+  }
   return 0;
 }

@@ -5,7 +5,8 @@
 // corner region, where round robin becomes badly imbalanced (paper §3) — by a serial loop (T1) and by every
 // scheduler at P = 1 … cores and oversubscribed. Repeats are interleaved (repeat r of every scheduler runs
 // before repeat r+1 of any), so slow drifts of a noisy machine spread over all of them. Every frame is
-// audited: each surface ran exactly once, and the frame's triangle count equals the serial loop's.
+// audited: each surface ran exactly once, the frame's triangle count equals the serial loop's, and every
+// surface passed the tessellation's own audit (trimmed pieces tiled exactly, area equal to the trim loops').
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -66,7 +67,9 @@ corner region: the case where round robin becomes imbalanced, paper §3) with a 
 scheduler at P = 1 ... cores and oversubscribed (2 x cores), measured side by side in one run. Shows progress,
 prints a table (frames/s, speed-up over the serial loop, % of ideal T1/P, utilization = busy / (wall x P),
 imbalance = max/mean busy, steals, lock waits) and writes JSON, CSV, markdown and PNG plots (gnuplot).
-Every frame is audited: each surface tessellated exactly once, triangle count equal to the serial loop's.
+Every frame is audited: each surface tessellated exactly once, triangle count equal to the serial loop's,
+and each trimmed surface's triangles tile its trimmed domain exactly (no overlap, no covered hole, (u, v) area
+equal to the trim loops'). Any failure is reported and the exit status is 1.
 
 options:
   --scene S         teapot | teacup | teaspoon | plant:N[:seed] | path to a model file  (default plant:15906)
@@ -81,6 +84,8 @@ options:
   --seed S          seed of victim orders and of the annealing                        (default 1)
   --out DIR         results directory                                               (default out)
   --no-plot         do not run gnuplot (the .gp scripts are still written)
+  --plant-defect D  negative control: tessellate with a planted defect (wave1-bridge | drop-ear) to see
+                    the audit fail (exit 1)
   --list            list the schedulers and exit
   --quiet           no progress lines
   --help            this text
@@ -103,6 +108,7 @@ struct Options {
   std::string out = "out";
   bool plot = true;
   bool quiet = false;
+  ts::PlantedDefect planted_defect = ts::PlantedDefect::none;
 };
 
 unsigned hardware_cores() { return std::max(1u, std::thread::hardware_concurrency()); }
@@ -148,6 +154,15 @@ Options parse(int argc, char** argv) {
       o.out = args.value();
     } else if (a == "--no-plot") {
       o.plot = false;
+    } else if (a == "--plant-defect") {
+      const std::string_view d = args.value();
+      if (d == "wave1-bridge") {
+        o.planted_defect = ts::PlantedDefect::bridge_to_first_copy;
+      } else if (d == "drop-ear") {
+        o.planted_defect = ts::PlantedDefect::drop_ear;
+      } else {
+        usage_error("--plant-defect expects wave1-bridge or drop-ear, got '" + std::string(d) + "'");
+      }
     } else if (a == "--quiet") {
       o.quiet = true;
     } else {
@@ -199,6 +214,8 @@ struct Workload {
   std::vector<ts::Frustum> frusta;
   ts::TessellationSettings settings;
   std::vector<std::uint64_t> serial_triangles;  // per frame, from the serial loop: the reference
+  std::vector<std::uint64_t> serial_inconsistencies;  // per frame: surfaces whose tessellation audit failed
+  std::vector<std::uint64_t> serial_capped;           // per frame: surfaces held at the step cap
 };
 
 // One scheduler at one P: what the interleaved repeats gathered.
@@ -214,7 +231,9 @@ struct Cell {
   double imbalance_sum = 0, imbalance_max = 0;
   std::uint64_t frames_run = 0;
   std::uint64_t audit_failures = 0, triangle_mismatches = 0;
+  std::uint64_t tessellation_inconsistencies = 0;  // surfaces × frames whose tessellation audit failed
   std::string first_problem;
+  bool failed() const { return audit_failures || triangle_mismatches || tessellation_inconsistencies; }
 };
 
 class Progress {
@@ -266,6 +285,7 @@ int main(int argc, char** argv) {
   for (const ts::Surface& s : wl.model.surfaces) wl.prepared.push_back(ts::prepare_surface(s));
   wl.buffers.resize(n);
   wl.settings.pixel_tolerance = o.tolerance;
+  wl.settings.planted_defect = o.planted_defect;
   const ts::Box box = ts::model_box(wl.model);
   for (int f = 0; f < o.frames; ++f) {
     wl.cameras.push_back(ts::camera_on_path(box, f, o.frames, o.width, o.height));
@@ -293,15 +313,27 @@ int main(int argc, char** argv) {
   std::vector<ts::TessellationScratch> scratch(
       std::max<std::size_t>(1, *std::max_element(o.threads.begin(), o.threads.end())));
   std::vector<std::uint32_t> triangles(n, 0);
+  // Per surface, this frame: the tessellation's own audit (tiling, area, tracing: surface_tessellator.hpp,
+  // step 6) failed, and the step cap held the deviation bound back.
+  std::vector<std::uint8_t> inconsistent(n, 0), capped(n, 0);
   auto tessellate = [&](int f, fs::ItemId id, fs::WorkerId w) {
     const ts::SurfaceResult r = ts::tessellate_surface(wl.prepared[id], wl.cameras[f], wl.frusta[f], wl.settings,
                                                        scratch[w], wl.buffers[id]);
     triangles[id] = static_cast<std::uint32_t>(r.triangles);
+    inconsistent[id] = r.inconsistencies() > 0;
+    capped[id] = r.capped;
   };
   auto frame_triangles = [&] {
     std::uint64_t t = 0;
     for (auto x : triangles) t += x;
     return t;
+  };
+  auto frame_count = [](const std::vector<std::uint8_t>& flags) {
+    return static_cast<std::uint64_t>(std::count(flags.begin(), flags.end(), std::uint8_t{1}));
+  };
+  auto first_inconsistent = [&] {
+    const auto it = std::find(inconsistent.begin(), inconsistent.end(), std::uint8_t{1});
+    return it == inconsistent.end() ? std::string() : wl.model.surfaces[static_cast<std::size_t>(it - inconsistent.begin())].name;
   };
 
   const std::size_t total_steps =
@@ -314,6 +346,12 @@ int main(int argc, char** argv) {
   for (int f = 0; f < o.frames; ++f) {  // warm-up pass; also the reference triangle counts
     for (fs::ItemId id = 0; id < n; ++id) tessellate(f, id, 0);
     wl.serial_triangles.push_back(frame_triangles());
+    wl.serial_inconsistencies.push_back(frame_count(inconsistent));
+    wl.serial_capped.push_back(frame_count(capped));
+    if (wl.serial_inconsistencies.back() > 0) {
+      std::cerr << kProgram << ": frame " << f << ": " << wl.serial_inconsistencies.back()
+                << " surfaces fail the tessellation audit (first: " << first_inconsistent() << ")\n";
+    }
   }
   progress.step("serial warm-up pass (reference triangle counts)");
 
@@ -368,6 +406,13 @@ int main(int argc, char** argv) {
           std::ostringstream s;
           s << "frame " << f << ": " << audit;
           c.first_problem = s.str();
+        }
+      }
+      if (const std::uint64_t bad = frame_count(inconsistent); bad > 0) {
+        c.tessellation_inconsistencies += bad;
+        if (c.first_problem.empty()) {
+          c.first_problem = "frame " + std::to_string(f) + ": " + std::to_string(bad) +
+                            " surfaces fail the tessellation audit (first: " + first_inconsistent() + ")";
         }
       }
       if (frame_triangles() != wl.serial_triangles[f]) {
@@ -434,8 +479,22 @@ int main(int argc, char** argv) {
     row.utilization = c.available > 0 ? 100.0 * c.busy_over_available / c.available : 0;
     row.imbalance_mean = c.frames_run ? c.imbalance_sum / c.frames_run : 0;
     rows.push_back(row);
-    if (c.audit_failures || c.triangle_mismatches) problems = true;
+    if (c.failed()) problems = true;
   }
+  std::uint64_t serial_inconsistencies = 0, capped_total = 0, capped_max = 0;
+  for (int f = 0; f < o.frames; ++f) {
+    serial_inconsistencies += wl.serial_inconsistencies[f];
+    capped_total += wl.serial_capped[f];
+    capped_max = std::max(capped_max, wl.serial_capped[f]);
+  }
+  if (serial_inconsistencies > 0) problems = true;
+  // One line that says what "audit ok" covers, and what it found.
+  std::ostringstream tessellation_audit;
+  tessellation_audit << "tessellation audit (every surface of every frame, every run: trimmed pieces tiled exactly, "
+                        "(u, v) area = trim-loop area): "
+                     << serial_inconsistencies << " inconsistencies in the serial loop; surfaces held at the "
+                     << wl.settings.max_steps << "-step cap (deviation may exceed " << o.tolerance << " px there): "
+                     << capped_total << " surface-frames, at most " << capped_max << " per frame";
 
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
@@ -457,14 +516,14 @@ int main(int argc, char** argv) {
     table << "| " << c.workers << " | " << c.scheduler << " | " << fixed(r.fps, 2) << " | " << fixed(r.speedup, 2)
           << " | " << fixed(r.ideal_pct, 1) << " | " << fixed(r.utilization, 1) << "% | " << fixed(r.imbalance_mean, 3)
           << " | " << c.totals.steals_succeeded << " (" << failed << ") | " << c.totals.lock_waits << " | "
-          << (c.audit_failures || c.triangle_mismatches ? "FAILED" : "ok") << " |\n";
+          << (c.failed() ? "FAILED" : "ok") << " |\n";
   }
   std::cout << "\nfrontsteal: " << o.scene << ", " << n << " surfaces, " << o.frames << " frames x " << o.repeats
             << " repeats (medians), tolerance " << o.tolerance << " px, " << o.width << "x" << o.height << "\n"
             << "machine: " << machine << " (measured, not simulated)\n"
             << "ideal = T1 / min(P, " << cores << "); utilization = busy / (wall x P), summed over every frame; "
             << "imbalance = max/mean busy per frame, averaged\n\n"
-            << table.str();
+            << table.str() << '\n' << tessellation_audit.str() << '\n';
 
   {
     std::ofstream md(dir / "frontsteal.md");
@@ -472,20 +531,22 @@ int main(int argc, char** argv) {
        << "Scene `" << o.scene << "` (" << n << " surfaces), " << o.frames << " frames along the camera path (orbit, "
        << "then zoom), " << o.repeats << " interleaved repeats (medians), tolerance " << o.tolerance << " px, "
        << o.width << "x" << o.height << ". Machine: " << machine << ". Commit " << FRONTSTEAL_GIT_COMMIT << ".\n\n"
-       << table.str();
+       << table.str() << '\n' << tessellation_audit.str() << ".\n";
   }
   {
     std::ofstream csv(dir / "frontsteal.csv");
     csv << "workers,scheduler,path_ms,frames_per_s,speedup,ideal_pct,utilization_pct,imbalance_mean,imbalance_max,"
-           "steals,steal_attempts,lock_waits,lock_wait_ms,setup_ms,audit_failures,triangle_mismatches\n";
-    csv << "1,serial," << t1_ms << ',' << 1000.0 * o.frames / t1_ms << ",1,100,,,,,,,,,0,0\n";
+           "steals,steal_attempts,lock_waits,lock_wait_ms,setup_ms,audit_failures,triangle_mismatches,"
+           "tessellation_inconsistencies\n";
+    csv << "1,serial," << t1_ms << ',' << 1000.0 * o.frames / t1_ms << ",1,100,,,,,,,,,0,0," << serial_inconsistencies
+        << "\n";
     for (const Row& r : rows) {
       const Cell& c = *r.cell;
       csv << c.workers << ',' << c.scheduler << ',' << r.path_ms << ',' << r.fps << ',' << r.speedup << ','
           << r.ideal_pct << ',' << r.utilization << ',' << r.imbalance_mean << ',' << c.imbalance_max << ','
           << c.totals.steals_succeeded << ',' << c.totals.steal_attempts << ',' << c.totals.lock_waits << ','
           << c.totals.lock_wait_ns / 1e6 << ',' << c.setup_ms << ',' << c.audit_failures << ','
-          << c.triangle_mismatches << '\n';
+          << c.triangle_mismatches << ',' << c.tessellation_inconsistencies << '\n';
     }
   }
   {
@@ -497,7 +558,11 @@ int main(int argc, char** argv) {
        << o.tolerance << ",\n  \"image\": [" << o.width << ", " << o.height << "],\n  \"hardware_threads\": " << cores
        << ",\n  \"serial\": {\"path_ms\": " << t1_ms << ", \"triangles_per_frame\": [";
     for (std::size_t f = 0; f < wl.serial_triangles.size(); ++f) js << (f ? ", " : "") << wl.serial_triangles[f];
-    js << "], \"frame_ms_median\": [";
+    js << "], \"inconsistent_surfaces_per_frame\": [";
+    for (std::size_t f = 0; f < wl.serial_inconsistencies.size(); ++f) js << (f ? ", " : "") << wl.serial_inconsistencies[f];
+    js << "], \"capped_surfaces_per_frame\": [";
+    for (std::size_t f = 0; f < wl.serial_capped.size(); ++f) js << (f ? ", " : "") << wl.serial_capped[f];
+    js << "], \"max_steps\": " << wl.settings.max_steps << ", \"frame_ms_median\": [";
     for (int f = 0; f < o.frames; ++f) {
       std::vector<double> v;
       for (const auto& rep : serial_frame_ms) v.push_back(rep[f]);
@@ -514,7 +579,8 @@ int main(int argc, char** argv) {
          << ", \"steal_attempts\": " << c.totals.steal_attempts << ", \"items_stolen\": " << c.totals.items_stolen
          << ", \"lock_waits\": " << c.totals.lock_waits << ", \"lock_wait_ms\": " << c.totals.lock_wait_ns / 1e6
          << ", \"setup_ms\": " << c.setup_ms << ", \"audit_failures\": " << c.audit_failures
-         << ", \"triangle_mismatches\": " << c.triangle_mismatches << ", \"path_ms_per_repeat\": [";
+         << ", \"triangle_mismatches\": " << c.triangle_mismatches << ", \"tessellation_inconsistencies\": "
+         << c.tessellation_inconsistencies << ", \"path_ms_per_repeat\": [";
       for (std::size_t k = 0; k < c.path_ms.size(); ++k) js << (k ? ", " : "") << c.path_ms[k];
       js << "], \"frame_ms_median\": [";
       for (int f = 0; f < o.frames; ++f) {
@@ -594,10 +660,14 @@ int main(int argc, char** argv) {
 
   if (problems) {
     std::cerr << kProgram << ": AUDIT FAILED:\n";
+    if (serial_inconsistencies > 0) {
+      std::cerr << "  serial loop: " << serial_inconsistencies << " surface-frames fail the tessellation audit\n";
+    }
     for (const Cell& c : cells) {
-      if (c.audit_failures || c.triangle_mismatches) {
+      if (c.failed()) {
         std::cerr << "  " << c.scheduler << " P=" << c.workers << ": " << c.audit_failures << " frames not exactly-once, "
-                  << c.triangle_mismatches << " triangle mismatches; first: " << c.first_problem << '\n';
+                  << c.triangle_mismatches << " triangle mismatches, " << c.tessellation_inconsistencies
+                  << " surface-frames failing the tessellation audit; first: " << c.first_problem << '\n';
       }
     }
     return 1;

@@ -1,12 +1,15 @@
 // model_format.cpp — the strict parser and the writer of the native model format (see model_format.hpp).
 #include "tessellate/model_format.hpp"
 
+#include "tessellate/loop_validation.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <istream>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <string_view>
@@ -187,33 +190,30 @@ class Parser {
     return loop;  // unreachable
   }
 
-  // Orientation (outer CCW, holes CW) and simple self-intersection of each loop of a finished surface.
+  // Orientation (outer CCW, holes CW) of each loop of a finished surface, then the loops together: no crossing
+  // or touching, no retraced edge, holes inside the outer loop and not inside each other (loop_validation.hpp).
   void check_loops(const Surface& s) {
     const std::size_t first = loop_lines_.size() - s.loops.size();
+    std::vector<std::vector<glm::dvec2>> polygons;
     for (std::size_t k = 0; k < s.loops.size(); ++k) {
       const int at = loop_lines_[first + k];
-      const std::vector<glm::dvec2> poly = sample_loop(s.loops[k]);
-      const double area2 = signed_area2(poly);
+      polygons.push_back(sample_loop(s.loops[k]));
+      const double area2 = signed_area2(polygons.back());
       if (std::abs(area2) < 1e-14) throw ModelError(file_, at, "loop encloses no area");
       if (k == 0 && area2 < 0) throw ModelError(file_, at, "outer loop is clockwise (material must lie on its left: counter-clockwise)");
       if (k > 0 && area2 > 0) throw ModelError(file_, at, "hole loop is counter-clockwise (holes run clockwise)");
-      if (self_intersects(poly)) throw ModelError(file_, at, "loop intersects itself");
     }
-  }
-
-  static bool self_intersects(const std::vector<glm::dvec2>& poly) {
-    const auto cross = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); };
-    const std::size_t n = poly.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const glm::dvec2 a = poly[i], b = poly[(i + 1) % n];
-      for (std::size_t j = i + 2; j < n; ++j) {
-        if (i == 0 && j == n - 1) continue;  // adjacent through the wrap-around
-        const glm::dvec2 c = poly[j], d = poly[(j + 1) % n];
-        const double d1 = cross(a, b, c), d2 = cross(a, b, d), d3 = cross(c, d, a), d4 = cross(c, d, b);
-        if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
+    if (const std::optional<LoopDefect> d = find_loop_defect(polygons)) {
+      const int at = loop_lines_[first + std::max(d->loop, d->other)];
+      std::ostringstream why;
+      why << describe(*d) << " near (" << d->near.x << ", " << d->near.y << "): the loop";
+      if (d->other != d->loop) {
+        why << "s at lines " << loop_lines_[first + std::min(d->loop, d->other)] << " and " << at;
+      } else {
+        why << " at line " << at;
       }
+      throw ModelError(file_, at, why.str());
     }
-    return false;
   }
 
   std::istream& in_;

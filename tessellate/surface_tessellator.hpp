@@ -117,6 +117,9 @@ struct SurfacePlan {
   double epsilon = 0;      // object-space deviation tolerance
   double edge_length = 0;  // object-space size bound
   StepSizes steps;
+  // The deviation bound wanted more than max_steps in a direction: the cap holds, so the screen deviation of
+  // this surface may exceed the pixel tolerance. Reported per frame, never silent.
+  bool capped = false;
 };
 
 inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, const Frustum& frustum,
@@ -138,9 +141,10 @@ inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, 
   const double object_per_pixel = d_min / (camera.focal_pixels() * std::sqrt(1.0 + tx * tx + ty * ty));
   plan.epsilon = settings.pixel_tolerance * object_per_pixel;
   plan.edge_length = settings.max_edge_pixels * object_per_pixel;
-  const StepSizes d = deviation_steps(s.bounds, plan.epsilon, settings.max_steps);
+  const StepSizes d = deviation_steps(s.bounds, plan.epsilon, settings.max_steps + 1);
+  plan.capped = d.n_u > settings.max_steps || d.n_v > settings.max_steps;
   const StepSizes z = size_steps(s.bounds, plan.edge_length, settings.max_steps);
-  plan.steps = {std::max(d.n_u, z.n_u), std::max(d.n_v, z.n_v)};
+  plan.steps = {std::min(std::max(d.n_u, z.n_u), settings.max_steps), std::min(std::max(d.n_v, z.n_v), settings.max_steps)};
   return plan;
 }
 
@@ -182,6 +186,7 @@ inline double estimate_cost(const PreparedSurface& s, const SurfacePlan& plan, c
 struct SurfaceResult {
   Culled culled = Culled::no;
   StepSizes steps;
+  bool capped = false;  // SurfacePlan::capped
   std::uint32_t triangles = 0;
   std::uint32_t trim_points = 0;
   std::uint32_t partial_cells = 0;
@@ -230,6 +235,7 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
   const int nu = plan.steps.n_u, nv = plan.steps.n_v;
   SurfaceResult result;
   result.steps = plan.steps;
+  result.capped = plan.capped;
   out.clear();
   // Trim polylines at this frame's n_t.
   scratch.loops.resize(s.loops.size());
@@ -366,6 +372,7 @@ inline SurfaceResult tessellate_surface(const PreparedSurface& s, const Camera& 
   tessellate_untrimmed(s.surface->patch, plan.steps, out, scratch.v_basis);
   SurfaceResult r;
   r.steps = plan.steps;
+  r.capped = plan.capped;
   r.triangles = static_cast<std::uint32_t>(out.triangle_count());
   return r;
 }

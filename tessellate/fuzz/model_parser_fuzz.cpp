@@ -5,8 +5,9 @@
 //   1. parse_model either returns a model or throws ModelError — any other exception, crash, leak or
 //      undefined behaviour (ASan + UBSan are on) is a finding;
 //   2. an accepted model survives write_model → parse_model with the same surfaces;
-//   3. an accepted model tessellates (a fixed camera, small step caps) without a trimming inconsistency the
-//      parser should have rejected, and with every triangle index in range.
+//   3. an accepted model tessellates (a fixed camera, small step caps) with every triangle index in range and
+//      without any inconsistency of the per-surface audit (tracing, tiling, area: surface_tessellator.hpp,
+//      step 6) — an accepted model the tessellator cannot tile exactly is a parser (or tessellator) finding.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -43,7 +44,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ts::TessellationScratch scratch;
   ts::TriangleBuffers tri;
   for (const ts::Surface& s : model.surfaces) {
-    ts::tessellate_surface(ts::prepare_surface(s), cam, ts::Frustum::of(cam), settings, scratch, tri);
+    const ts::SurfaceResult r = ts::tessellate_surface(ts::prepare_surface(s), cam, ts::Frustum::of(cam), settings, scratch, tri);
+    if (r.inconsistencies() > 0) std::abort();
     for (std::uint32_t index : tri.indices) {
       if (index >= tri.positions.size()) std::abort();
     }

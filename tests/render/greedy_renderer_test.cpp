@@ -112,6 +112,21 @@ TEST_CASE("greedy rendering with the null renderer: statistics add up") {
   for (std::size_t u = 1; u < st.per_update.size(); ++u) CHECK(st.per_update[u].at_seconds >= st.per_update[u - 1].at_seconds);
 }
 
+TEST_CASE("greedy rendering reports the tessellation audit; a planted defect is counted") {
+  ts::Model m = ts::load_scene("plant:300", FRONTSTEAL_DATA_DIR);
+  ts::assign_components(m, 1e-6);
+  rd::GreedyOptions o;
+  o.null_renderer = true;
+  o.updates = 12;
+  o.display_rate = 200;
+  const rd::GreedyStats clean = rd::run_greedy(m, o);
+  CHECK(clean.tessellation_frames >= 1);
+  CHECK(clean.tessellation_inconsistencies == 0);
+  o.settings.planted_defect = ts::PlantedDefect::drop_ear;  // negative control
+  const rd::GreedyStats planted = rd::run_greedy(m, o);
+  CHECK(planted.tessellation_inconsistencies > 0);
+}
+
 TEST_CASE("greedy rendering with OpenGL: lagging frames stay close to synchronized ones") {
   ts::Model m = ts::load_scene("plant:80", FRONTSTEAL_DATA_DIR);
   rd::GreedyOptions o;

@@ -153,6 +153,32 @@ TEST_CASE("loops of the wrong orientation or crossing themselves are rejected", 
   CHECK_THROWS_WITH(parse(out.str()), Catch::Contains("hole loop is counter-clockwise"));
 }
 
+TEST_CASE("holes that cross, touch, nest or lie outside are refused with both loops' lines", "[tessellate][format]") {
+  // kPlate's hole is the loop at line 19; a second hole is appended after it (its 'loop' on line 31).
+  const auto with_second_hole = [](const std::string& points) {
+    std::string text = kPlate;
+    text.replace(text.find("endsurface"), std::string("endsurface").size(),
+                 "  loop\n    polyline 5\n" + points + "  endloop\nendsurface");
+    return text;
+  };
+  const auto pts = [](std::initializer_list<std::pair<double, double>> list) {
+    std::ostringstream s;
+    for (const auto& [u, v] : list) s << "    pt " << u << " " << v << "\n";
+    return s.str();
+  };
+  // Crosses the first hole (the square 0.4..0.6 with a bulge to 0.7).
+  CHECK_THROWS_WITH(parse(with_second_hole(pts({{0.5, 0.5}, {0.5, 0.8}, {0.8, 0.8}, {0.8, 0.5}, {0.5, 0.5}}))),
+                    Catch::Contains("plate.fsm:31: loops cross or touch each other") && Catch::Contains("lines 19 and 31"));
+  // Inside the first hole.
+  CHECK_THROWS_WITH(parse(with_second_hole(pts({{0.45, 0.45}, {0.45, 0.5}, {0.5, 0.5}, {0.5, 0.45}, {0.45, 0.45}}))),
+                    Catch::Contains("plate.fsm:31: hole lies inside another hole"));
+  // Touching the outer loop along the bottom edge.
+  CHECK_THROWS_WITH(parse(with_second_hole(pts({{0.1, 0.0}, {0.1, 0.2}, {0.2, 0.2}, {0.2, 0.0}, {0.1, 0.0}}))),
+                    Catch::Contains("plate.fsm:31: loops cross or touch each other"));
+  // Apart from everything: accepted.
+  CHECK(parse(with_second_hole(pts({{0.1, 0.1}, {0.1, 0.2}, {0.2, 0.2}, {0.2, 0.1}, {0.1, 0.1}}))).surfaces[0].loops.size() == 3);
+}
+
 TEST_CASE("a missing file is a clear error", "[tessellate][format]") {
   CHECK_THROWS_WITH(ts::load_model("no/such/model.fsm"), Catch::Contains("no/such/model.fsm:0: cannot open the file"));
 }
