@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/cli_args.hpp"
+#include "tessellate/isolated_import.hpp"
 #include "tessellate/model_format.hpp"
 #include "tessellate/occt_import.hpp"
 
@@ -27,12 +28,15 @@ namespace fsys = std::filesystem;
 constexpr std::string_view kProgram = "frontsteal-import";
 constexpr std::string_view kUsage = R"(frontsteal-import — CAD files (STEP, IGES, BREP) into a frontsteal model, through Open CASCADE.
 
-Usage: frontsteal-import IN [IN...] -o OUT.fsm [--report REPORT.json] [--samples N]
+Usage: frontsteal-import IN [IN...] -o OUT.fsm [--report REPORT.json] [--samples N] [--time-limit S]
+                         [--memory-limit MB]
 
   IN                  .step/.stp, .iges/.igs or .brep files (chosen by extension, any case)
   -o, --output FILE   the model to write (native format: tessellate/model_format.hpp)
   --report FILE       also write the per-file reports as JSON
   --samples N         trim-curve samples per knot span of a p-curve (default 8, 1..1000)
+  --time-limit S      seconds one file's reader may run (default 30)
+  --memory-limit MB   resident memory one file's reader may use, MiB (default 4096)
   -h, --help          this text
 
 Every face is converted to B-splines (BRepBuilderAPI_NurbsConvert), split at its knots into rational Bézier
@@ -41,6 +45,10 @@ sampled to polylines) are cut along the patch grid, so each patch gets its own l
 written passes the native format's strict checks. Progress goes to stderr; the per-file report (faces,
 imported faces, Bézier patches, surfaces, trim loops, loops reversed to fit their nesting ("reorient"),
 loops with a tiny corner loop cut off ("corners"), and what was skipped, grouped by reason) to stdout.
+Each file is read in a child process under the time and memory limits (Open CASCADE's readers can crash or
+run forever on hostile files): a reader that crashes, runs out of time or memory, or fails is reported with
+the file and the cause, and nothing is written. A file that looks cut short (no STEP trailer, no IGES
+terminate section) is imported with a warning.
 Exit status: 0 on success, 1 when an input cannot be read or the output cannot be written, 2 for bad usage.
 )";
 
@@ -49,6 +57,7 @@ struct Options {
   std::string output;
   std::string report;
   int samples = 8;
+  tess::IsolationLimits limits;
 };
 
 [[noreturn]] void usage_error(const std::string& message) { frontsteal::cli::usage_error(kProgram, message); }
@@ -67,6 +76,10 @@ Options parse(int argc, char** argv) {
       if (o.report.empty()) usage_error("--report needs a file name");
     } else if (arg == "--samples") {
       o.samples = frontsteal::cli::parse_number<int>(kProgram, arg, args.value(), 1, 1000);
+    } else if (arg == "--time-limit") {
+      o.limits.time_limit_s = frontsteal::cli::parse_number<double>(kProgram, arg, args.value(), 0.1, 86400.0);
+    } else if (arg == "--memory-limit") {
+      o.limits.memory_limit_mb = frontsteal::cli::parse_number<double>(kProgram, arg, args.value(), 16.0, 1e7);
     } else if (arg.size() > 1 && arg[0] == '-') {
       usage_error("unknown option '" + std::string(arg) + "'");
     } else {
@@ -143,7 +156,9 @@ void write_report_json(std::ostream& o, const Options& opt, const std::vector<Fi
     o << (i ? "," : "") << "\n    {\"file\": " << json_string(r.file) << ", \"faces\": " << r.faces
       << ", \"faces_imported\": " << r.faces_imported << ", \"patches\": " << r.patches << ", \"surfaces\": " << r.surfaces
       << ", \"trim_loops\": " << r.trim_loops << ", \"loops_reoriented\": " << r.loops_reoriented
-      << ", \"corner_loops_cut\": " << r.corner_loops_cut
+      << ", \"corner_loops_cut\": " << r.corner_loops_cut << ", \"warnings\": [";
+    for (std::size_t k = 0; k < r.warnings.size(); ++k) o << (k ? ", " : "") << json_string(r.warnings[k]);
+    o << "]"
       << ", \"seconds\": " << std::fixed << std::setprecision(3) << results[i].seconds << ",\n     \"skipped_by_reason\": [";
     const auto groups = by_reason(r);
     for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -211,7 +226,7 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     FileResult f;
     try {
-      f.report = tess::import_cad_file(in, model, import_options);
+      f.report = tess::import_cad_file_isolated(in, model, import_options, opt.limits);
     } catch (const std::exception& e) {
       std::cerr << kProgram << ": error: " << e.what() << "\n";
       return 1;
@@ -220,6 +235,7 @@ int main(int argc, char** argv) {
     std::cerr << kProgram << ": " << in << ": " << f.report.faces << " faces, " << f.report.faces_imported
               << " imported, " << f.report.surfaces << " surfaces, " << f.report.skipped.size() << " skipped, "
               << std::fixed << std::setprecision(2) << f.seconds << " s\n";
+    for (const std::string& w : f.report.warnings) std::cerr << kProgram << ": warning: " << in << ": " << w << "\n";
     results.push_back(std::move(f));
   }
 

@@ -3,7 +3,10 @@
 
 #include "tessellate/loop_validation.hpp"
 
+#include <cerrno>
 #include <charconv>
+#include <cstring>
+#include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -12,6 +15,7 @@
 #include <optional>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 #include <string_view>
 #include <vector>
 
@@ -29,6 +33,7 @@ class Parser {
       fail("expected the header 'frontsteal-model 1'");
     }
     Model model;
+    std::vector<int> component_lines;  // line of each surface's 'component', 0 when it has none
     while (next()) {
       const std::string_view key = words_[0];
       if (key == "model") {
@@ -37,9 +42,19 @@ class Parser {
         model.name = words_[1];
       } else if (key == "surface") {
         if (words_.size() > 2) fail("'surface' takes at most a name");
+        component_line_ = 0;
         model.surfaces.push_back(parse_surface(words_.size() == 2 ? std::string(words_[1]) : std::string()));
+        component_lines.push_back(component_line_);
       } else {
         fail("unknown keyword '" + std::string(key) + "' (expected model or surface)");
+      }
+    }
+    // Component ids index per-component arrays (rendering): they must be below the number of surfaces.
+    for (std::size_t k = 0; k < model.surfaces.size(); ++k) {
+      if (model.surfaces[k].component >= static_cast<int>(model.surfaces.size())) {
+        throw ModelError(file_, component_lines[k], "component " + std::to_string(model.surfaces[k].component) +
+                                                        " is out of range: a model of " + std::to_string(model.surfaces.size()) +
+                                                        " surfaces has components 0.." + std::to_string(model.surfaces.size() - 1));
       }
     }
     return model;
@@ -51,6 +66,7 @@ class Parser {
     std::string raw;
     while (std::getline(in_, raw)) {
       ++line_;
+      check_bytes(raw);
       line_text_ = raw.substr(0, raw.find('#'));
       words_.clear();
       std::istringstream tokens(line_text_);
@@ -62,6 +78,22 @@ class Parser {
 
   [[noreturn]] void fail(const std::string& reason) const { throw ModelError(file_, line_, reason); }
 
+  // Name what is wrong with the bytes themselves, before any word is read: otherwise a byte-order mark, a
+  // CR-only file or a binary file would be reported as a missing header or "not a number".
+  void check_bytes(const std::string& raw) const {
+    if (line_ == 1 && raw.starts_with("\xEF\xBB\xBF")) {
+      fail("the file starts with a UTF-8 byte-order mark (EF BB BF); save it as plain UTF-8/ASCII without one");
+    }
+    if (const auto nul = raw.find('\0'); nul != std::string::npos) {
+      fail("NUL byte at column " + std::to_string(nul + 1) + ": this is a binary file, not a frontsteal model");
+    }
+    if (const auto cr = raw.find('\r'); cr != std::string::npos && cr + 1 < raw.size()) {
+      fail("carriage return inside a line (column " + std::to_string(cr + 1) +
+           "): the file uses CR-only line ends (classic Mac OS); convert them to LF");
+    }
+    if (raw.size() > kMaxLineLength) fail("line is longer than " + std::to_string(kMaxLineLength) + " bytes");
+  }
+
   void expect_fields(std::size_t n, const char* form) const {
     if (words_.size() != n) fail("expected '" + std::string(form) + "'");
   }
@@ -70,6 +102,9 @@ class Parser {
     const std::string& w = words_[k];
     double v = 0;
     const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec == std::errc::result_out_of_range && end == w.data() + w.size()) {
+      fail(std::string(what) + " '" + w + "' is out of the range of a double");
+    }
     if (ec != std::errc{} || end != w.data() + w.size()) fail(std::string(what) + " '" + w + "' is not a number");
     if (!std::isfinite(v)) fail(std::string(what) + " '" + w + "' is not finite");
     return v;
@@ -79,6 +114,9 @@ class Parser {
     const std::string& w = words_[k];
     int v = 0;
     const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec == std::errc::result_out_of_range && end == w.data() + w.size()) {
+      fail(std::string(what) + " " + w + " is out of range " + std::to_string(lo) + ".." + std::to_string(hi));
+    }
     if (ec != std::errc{} || end != w.data() + w.size()) fail(std::string(what) + " '" + w + "' is not a whole number");
     if (v < lo || v > hi) {
       fail(std::string(what) + " " + w + " is out of range " + std::to_string(lo) + ".." + std::to_string(hi));
@@ -113,6 +151,7 @@ class Parser {
       } else if (key == "component") {
         expect_fields(2, "component <k>");
         s.component = integer(1, "component", 0, std::numeric_limits<int>::max());
+        component_line_ = line_;
       } else if (key == "patch") {
         if (have_patch) fail("a surface has exactly one 'patch'");
         expect_fields(3, "patch <degree_u> <degree_v>");
@@ -131,6 +170,15 @@ class Parser {
         const glm::dvec3 p{number(1, "x"), number(2, "y"), number(3, "z")};
         const double w = words_.size() == 5 ? number(4, "weight") : 1.0;
         if (!(w > 0)) fail("weight " + words_[4] + " must be > 0");
+        for (int c = 0; c < 3; ++c) {
+          if (std::abs(p[c]) > kMaxCoordinate) {
+            fail(std::string("xyz").substr(static_cast<std::size_t>(c), 1) + " " + words_[1 + static_cast<std::size_t>(c)] +
+                 " is out of range: |coordinate| <= " + format_limit(kMaxCoordinate) + " (step sizes square lengths)");
+          }
+        }
+        if (w < kMinWeight || w > kMaxWeight) {
+          fail("weight " + words_[4] + " is out of range " + format_limit(kMinWeight) + ".." + format_limit(kMaxWeight));
+        }
         const int i = points_read / (s.patch.degree_v + 1);
         const int j = points_read % (s.patch.degree_v + 1);
         s.patch.set(i, j, p, w);
@@ -216,9 +264,17 @@ class Parser {
     }
   }
 
+  static std::string format_limit(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+
+  static constexpr std::size_t kMaxLineLength = 1 << 16;
   std::istream& in_;
   std::string file_;
   int line_ = 0;
+  int component_line_ = 0;
   std::string line_text_;
   std::vector<std::string> words_;
   std::vector<int> loop_lines_;  // line of each parsed loop's 'loop' keyword, for later checks
@@ -229,12 +285,31 @@ class Parser {
 Model parse_model(std::istream& in, const std::string& file_name) { return Parser(in, file_name).parse(); }
 
 Model load_model(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ModelError(path, 0, "cannot open the file");
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) throw ModelError(path, 0, "cannot open the file: no such file");
+  if (status.type() == std::filesystem::file_type::directory) throw ModelError(path, 0, "cannot open the file: it is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ModelError(path, 0, std::string("cannot open the file: ") + std::strerror(errno));
   return parse_model(in, path);
 }
 
 void write_model(std::ostream& out, const Model& model) {
+  // Refuse to write a file the parser would refuse (an 'inf' written here used to fail only at the next load).
+  for (const Surface& s : model.surfaces) {
+    for (int i = 0; i <= s.patch.degree_u; ++i) {
+      for (int j = 0; j <= s.patch.degree_v; ++j) {
+        const glm::dvec3 p = s.patch.point(i, j);
+        const double w = s.patch.weight(i, j);
+        const bool ok = std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
+                        std::abs(p.z) <= kMaxCoordinate && w >= kMinWeight && w <= kMaxWeight;
+        if (!ok) {
+          throw std::invalid_argument("write_model: surface '" + s.name +
+                                      "' has a control point or weight that is not finite or out of range");
+        }
+      }
+    }
+  }
   out << "frontsteal-model 1\n" << std::setprecision(17);
   if (!model.name.empty()) out << "model " << model.name << "\n";
   for (const Surface& s : model.surfaces) {

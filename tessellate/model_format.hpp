@@ -19,9 +19,11 @@
 //   endsurface
 //
 // The parser is strict: the first problem stops it with a ModelError naming file:line and the reason —
-// an unknown keyword, a wrong count, a number that is not finite, a degree out of range, a weight <= 0, a
-// trim point outside [0,1]², an open loop, a loop of the wrong orientation, a self-intersecting loop — and
-// nothing is half-loaded (the model is returned only when the whole file is valid).
+// a byte-order mark, CR-only line ends, a NUL byte, an unknown keyword, a wrong count, a number that is not
+// finite or out of range (|coordinate| <= 1e12, weights 1e-12..1e12), a degree out of range, a trim point
+// outside [0,1]², an open loop, a loop of the wrong orientation, loops that cross, touch, retrace an edge or
+// nest (loop_validation.hpp), a component id not below the number of surfaces — and nothing is half-loaded
+// (the model is returned only when the whole file is valid).
 #pragma once
 
 #include <iosfwd>
@@ -31,6 +33,13 @@
 #include "tessellate/model.hpp"
 
 namespace frontsteal::tess {
+
+// Limits of the numbers a model may hold. Step sizes and culling square lengths and multiply weights: beyond
+// these, intermediate values overflow to inf/NaN (a 1e155 coordinate made a NaN step count), and no 1 px
+// tolerance is representable next to such magnitudes anyway.
+inline constexpr double kMaxCoordinate = 1e12;
+inline constexpr double kMinWeight = 1e-12;
+inline constexpr double kMaxWeight = 1e12;
 
 class ModelError : public std::runtime_error {
  public:
@@ -46,9 +55,11 @@ class ModelError : public std::runtime_error {
 
 // Parses a whole model; `file_name` is used in error messages only.
 Model parse_model(std::istream& in, const std::string& file_name);
-// Opens and parses `path`; a file that cannot be opened is a ModelError at line 0.
+// Opens and parses `path`; a file that cannot be opened (missing, a directory, unreadable) is a ModelError at
+// line 0 that says which.
 Model load_model(const std::string& path);
-// Writes `model` in the native format (full precision: parse_model(write_model(m)) reproduces m).
+// Writes `model` in the native format (full precision: parse_model(write_model(m)) reproduces m). Throws
+// std::invalid_argument, writing nothing, for a model with numbers the parser would refuse.
 void write_model(std::ostream& out, const Model& model);
 
 }  // namespace frontsteal::tess

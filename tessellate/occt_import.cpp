@@ -127,7 +127,9 @@ TopoDS_Shape read_shape(const std::string& path) {
                              "' (expected .step, .stp, .iges, .igs or .brep)");
   }
   std::error_code ec;
-  if (!fsys::is_regular_file(path, ec)) throw std::runtime_error(path + ": cannot open the file (no such file)");
+  if (fsys::is_directory(path, ec)) throw std::runtime_error(path + ": cannot open the file (it is a directory)");
+  if (!fsys::exists(path, ec)) throw std::runtime_error(path + ": cannot open the file (no such file)");
+  if (!fsys::is_regular_file(path, ec)) throw std::runtime_error(path + ": cannot open the file (not a regular file)");
   if (std::ifstream probe(path); !probe) throw std::runtime_error(path + ": cannot open the file (not readable)");
 
   const QuietMessenger quiet;
@@ -665,11 +667,37 @@ class FaceImporter {
 
 }  // namespace
 
+// A STEP file ends with "END-ISO-10303-21;", an IGES file with its terminate section (a line whose column 73
+// is 'T'). Without them the file was probably cut short, and the readers import what they got without a word.
+std::string truncation_warning(const std::string& path) {
+  const std::string ext = lowercase(fsys::path(path).extension().string());
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in.tellg();
+  const std::streamoff tail = std::min<std::streamoff>(size, 4096);
+  std::string text(static_cast<std::size_t>(tail), '\0');
+  in.seekg(size - tail);
+  in.read(text.data(), tail);
+  if (ext == ".step" || ext == ".stp") {
+    if (text.find("END-ISO-10303-21") == std::string::npos) {
+      return "the STEP file has no END-ISO-10303-21 trailer: it was probably cut short, and only part of it was read";
+    }
+  } else if (ext == ".iges" || ext == ".igs") {
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+    const std::size_t start = text.find_last_of('\n') == std::string::npos ? 0 : text.find_last_of('\n') + 1;
+    const std::string last = text.substr(start);
+    if (last.size() < 73 || last[72] != 'T') {
+      return "the IGES file has no terminate section: it was probably cut short, and only part of it was read";
+    }
+  }
+  return {};
+}
+
 ImportReport import_cad_file(const std::string& path, Model& out, const ImportOptions& options) {
   if (options.samples_per_span < 1) throw std::invalid_argument("ImportOptions::samples_per_span must be >= 1");
   const TopoDS_Shape shape = read_shape(path);
   ImportReport report;
   report.file = path;
+  if (std::string w = truncation_warning(path); !w.empty()) report.warnings.push_back(std::move(w));
   const std::string stem = sanitize(fsys::path(path).stem().string());
   if (out.name.empty()) out.name = stem;
 

@@ -58,6 +58,9 @@ struct ImportReport {
   int loops_reoriented = 0;  // loops found the wrong way round for their nesting and reversed
   int corner_loops_cut = 0;  // loops where p-curves overshooting each other at a corner made a tiny loop, cut off
   std::vector<ImportSkip> skipped;
+  // Whole-file doubts that are not errors: a STEP file without its END-ISO-10303-21 trailer or an IGES file
+  // without its terminate section was probably cut short, so "43 of 213 faces" may be all that was read.
+  std::vector<std::string> warnings;
 };
 
 struct ImportOptions {
