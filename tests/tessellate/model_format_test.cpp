@@ -107,7 +107,7 @@ TEST_CASE("bad input names file:line and the reason", "[tessellate][format]") {
       {with_line(6, "  patch 0 1"), "plate.fsm:6: degree 0 is out of range 1..7"},
       {with_line(6, "  patch 8 1"), "plate.fsm:6: degree 8 is out of range 1..7"},
       {with_line(7, "  cp 0 nan 0"), "plate.fsm:7: y 'nan' is not finite"},
-      {with_line(7, "  cp 0 1e999 0"), "plate.fsm:7: y '1e999' is not a number"},
+      {with_line(7, "  cp 0 1e999 0"), "plate.fsm:7: y '1e999' is out of the range of a double"},
       {with_line(7, "  cp 0 zero 0"), "plate.fsm:7: y 'zero' is not a number"},
       {with_line(10, "  cp 1 1 0 0"), "plate.fsm:10: weight 0 must be > 0"},
       {with_line(10, "  cp 1 1 0 -2"), "plate.fsm:10: weight -2 must be > 0"},
