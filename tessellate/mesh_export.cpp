@@ -10,6 +10,8 @@
 namespace frontsteal::tess {
 
 void write_obj(std::ostream& out, std::span<const MeshPart> parts) {
+  // 9 significant digits write every float exactly (max_digits10): the export adds no error of its own.
+  const auto precision = out.precision(9);
   out << "# frontsteal tessellated frame: " << parts.size() << " surfaces\n";
   std::size_t base = 1;  // OBJ indices start at 1 and run across the file
   for (const MeshPart& part : parts) {
@@ -29,6 +31,7 @@ void write_obj(std::ostream& out, std::span<const MeshPart> parts) {
     }
     base += b.positions.size();
   }
+  out.precision(precision);
 }
 
 namespace {
