@@ -63,6 +63,8 @@ modes:
 options:
   --seconds S        time per case (default 3; the suite stays within a few minutes under TSan)
   --frames F         frames per case instead of a time bound (the slow tier uses 1e6 in total)
+  --control-seconds S  a negative control ignores --seconds and --frames: it runs until its planted defect
+                     is caught (the first duplicate), and fails only if S seconds pass first     (default 60)
   --items N          items per frame (default 256)
   --chaos R          chaos injections per million labelled accesses (default 2000; 0 disables)
   --targets LIST     comma-separated target names (see --list), or all                 (default all)
@@ -81,6 +83,7 @@ options:
 struct Options {
   double seconds = 3;
   std::uint64_t frames = 0;
+  double control_seconds = 60;
   ItemId items = 256;
   std::uint32_t chaos = 2000;
   std::vector<std::string> targets;
@@ -120,6 +123,9 @@ Options parse(int argc, char** argv) {
     } else if (a == "--seconds") {
       o.seconds = parse_number<double>(a, value());
       if (!(o.seconds > 0)) usage_error("--seconds must be positive");
+    } else if (a == "--control-seconds") {
+      o.control_seconds = parse_number<double>(a, value());
+      if (!(o.control_seconds > 0)) usage_error("--control-seconds must be positive");
     } else if (a == "--frames") {
       o.frames = parse_number<std::uint64_t>(a, value());
     } else if (a == "--items") {
@@ -175,6 +181,12 @@ class CostModel {
   std::mt19937_64 rng_;
 };
 
+std::string fmt(double v, int digits = 2) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*f", digits, v);
+  return b;
+}
+
 struct CaseResult {
   std::string target;
   std::string contract;
@@ -208,8 +220,14 @@ CaseResult run_case(const TargetInfo& t, WorkerId p, const Options& o, std::uint
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   auto last_report = start;
-  for (;;) {
-    if (o.frames ? r.frames >= o.frames : elapsed() >= o.seconds) break;
+  // How often a planted defect shows is a matter of timing: on a loaded machine the workers may rarely overlap.
+  // So a negative control runs until its first duplicate, not for a fixed time; control_seconds is only there
+  // so that a defect the audit cannot see ends the run (as a failure) instead of hanging it.
+  auto finished = [&] {
+    if (t.negative_control) return r.duplicated > 0 || elapsed() >= o.control_seconds;
+    return o.frames ? r.frames >= o.frames : elapsed() >= o.seconds;
+  };
+  while (!finished()) {
     costs.next_frame();
     const auto& st = target->run_frame([&](ItemId id, WorkerId) {
       runs.record(id);
@@ -234,7 +252,10 @@ CaseResult run_case(const TargetInfo& t, WorkerId p, const Options& o, std::uint
     r.verdict = "FAIL: lost items";
   } else if (t.negative_control) {
     r.passed = r.duplicated > 0;
-    r.verdict = r.passed ? "caught (negative control)" : "FAIL: negative control not caught";
+    std::ostringstream v;
+    v << (r.passed ? "caught (negative control) after " : "FAIL: negative control not caught in ") << r.frames
+      << " frames, " << fmt(r.seconds * 1e3, 1) << " ms";
+    r.verdict = v.str();
   } else if (t.contract == Contract::kExactlyOnce && r.duplicated > 0) {
     r.passed = false;
     r.verdict = "FAIL: duplicates under an exactly-once policy";
@@ -326,12 +347,6 @@ FaultResult fault_edges(const Options& o) {
   return {"edges: P = 1, P > N, N = 0", ok, d.str()};
 }
 
-std::string fmt(double v, int digits = 2) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.*f", digits, v);
-  return b;
-}
-
 void write_results(const Options& o, const std::vector<CaseResult>& cases, const std::vector<FaultResult>& faults,
                    const std::vector<RaceRow>& races, const std::vector<ScenarioRow>& scenario_rows, bool all_ok,
                    double seconds) {
@@ -366,9 +381,11 @@ void write_results(const Options& o, const std::vector<CaseResult>& cases, const
   md
      << "Build: " << build << "; " << std::thread::hardware_concurrency() << " hardware threads; items per frame "
      << o.items << "; chaos " << (o.rates ? 0 : o.chaos) << " per million labelled accesses; seed " << o.seed
-     << "; " << (o.frames ? std::to_string(o.frames) + " frames" : fmt(o.seconds, 1) + " s") << " per case.\n\n"
-     << "| target | contract | P | frames | 0 dup | 1 dup | 2+ dup | lost | dup per 1e6 items | steals | skipped | chaos | verdict |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+     << "; " << (o.frames ? std::to_string(o.frames) + " frames" : fmt(o.seconds, 1) + " s")
+     << " per case; a negative control runs until it is caught (at most " << fmt(o.control_seconds, 0)
+     << " s), so its frames and seconds are the time to the first duplicate.\n\n"
+     << "| target | contract | P | frames | seconds | 0 dup | 1 dup | 2+ dup | lost | dup per 1e6 items | steals | skipped | chaos | verdict |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   js << "{\n  \"kind\": \"measured\", \"build\": \"" << build << "\", \"items\": " << o.items
      << ", \"chaos_per_million\": " << (o.rates ? 0 : o.chaos) << ",\n  \"handshake_race\": [";
   for (std::size_t i = 0; i < races.size(); ++i) {
@@ -381,11 +398,13 @@ void write_results(const Options& o, const std::vector<CaseResult>& cases, const
   js << "],\n  \"cases\": [\n";
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const auto& c = cases[i];
-    md << "| " << c.target << " | " << c.contract << " | " << c.threads << " | " << c.frames << " | " << c.frames_dup0
+    md << "| " << c.target << " | " << c.contract << " | " << c.threads << " | " << c.frames << " | "
+       << fmt(c.seconds, 3) << " | " << c.frames_dup0
        << " | " << c.frames_dup1 << " | " << c.frames_dup2plus << " | " << c.lost << " | "
        << fmt(c.duplicates_per_million_items(), 3) << " | " << c.steals << " | " << c.skipped << " | " << c.chaos
        << " | " << c.verdict << " |\n";
-    js << "    {\"target\": \"" << c.target << "\", \"contract\": \"" << c.contract << "\", \"threads\": " << c.threads
+    js << "    {\"target\": \"" << c.target << "\", \"contract\": \"" << c.contract << "\", \"negative_control\": "
+       << (c.negative_control ? "true" : "false") << ", \"threads\": " << c.threads
        << ", \"frames\": " << c.frames << ", \"frames_with_0_duplicates\": " << c.frames_dup0
        << ", \"frames_with_1_duplicate\": " << c.frames_dup1 << ", \"frames_with_2plus_duplicates\": "
        << c.frames_dup2plus << ", \"lost\": " << c.lost << ", \"duplicated\": " << c.duplicated
