@@ -11,11 +11,14 @@
 // the planted defects' cells are relaxed atomics so that the audit, not TSan's halt, reports them).
 // Outcome histogram: how many frames behind the newest finished frame each drawn component was (the lag).
 // Negative controls: Broken:ReuseWithoutGrace and Broken:PublishEachSurface must be caught; the run fails if not.
+// Each runs until its first catch (up to --control-seconds), not for --seconds: how soon a pusher update overlaps a
+// premature reuse depends on how the machine's load schedules the threads, so a fixed duration can miss it.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <random>
@@ -46,7 +49,9 @@ defects Broken:ReuseWithoutGrace and Broken:PublishEachSurface must be caught. B
 ThreadSanitizer's verdict on the triangle cells as well. Exits 1 on any unexpected outcome.
 
 options:
-  --seconds S      run time per case (policy x P x slots)                                   (default 2)
+  --seconds S      run time per case of the sound policy (per P x slots)                     (default 2)
+  --control-seconds S  a negative control runs until its defect is caught; it fails only if S seconds pass
+                   first                                                                     (default 60)
   --threads LIST   tessellator counts                                                        (default 2,4)
   --slots LIST     slots per component                                                       (default 2,3)
   --components N   components (1..4 surfaces each, seeded)                                   (default 24)
@@ -59,6 +64,7 @@ options:
 
 struct Options {
   double seconds = 2;
+  double control_seconds = 60;
   std::vector<WorkerId> threads{2, 4};
   std::vector<SlotIndex> slots{2, 3};
   std::uint32_t components = 24;
@@ -75,6 +81,7 @@ struct CaseResult {
   bool negative_control = false;
   std::uint64_t frames = 0, updates = 0, driver_waits = 0;
   std::uint64_t torn = 0, reuse = 0, backwards = 0;
+  double seconds = 0;  // for a negative control: until the first catch
   std::map<std::uint64_t, std::uint64_t> lag;  // frames behind the newest finished frame -> component draws
   bool passed() const { return negative_control ? (torn + reuse + backwards) > 0 : (torn + reuse + backwards) == 0; }
 };
@@ -122,6 +129,7 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
   };
   std::atomic<std::uint64_t> newest_frame{0};
   std::atomic<bool> stop{false};
+  std::atomic<bool> caught{false};  // the pusher saw a violation: a negative control can end its case
   chaos_settings() = {o.chaos, o.seed};  // before any thread of the case starts; reset after all have joined
 
   // The pusher reads every component's slot first and checks it again after "drawing" them all, so it holds
@@ -156,13 +164,16 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
       }
       publication.end_update();
       ++r.updates;
+      if (r.torn + r.reuse + r.backwards > 0) caught.store(true, std::memory_order::relaxed);
     }
   });
 
   {
     StealingScheduler<Fenced, ChaosBackend> scheduler({.workers = threads, .items = surfaces, .seed = o.seed});
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.seconds);
-    while (std::chrono::steady_clock::now() < deadline) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto deadline = start + std::chrono::duration<double>(negative_control ? o.control_seconds : o.seconds);
+    while (std::chrono::steady_clock::now() < deadline &&
+           !(negative_control && caught.load(std::memory_order::relaxed))) {
       r.driver_waits += publication.prepare_frame();
       const std::uint64_t frame = ++r.frames;
       scheduler.run_frame([&](ItemId id, WorkerId) {
@@ -176,6 +187,7 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
       });
       newest_frame.store(frame, std::memory_order::relaxed);
     }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   stop.store(true, std::memory_order::relaxed);
   pusher.join();
@@ -190,6 +202,8 @@ Options parse(int argc, char** argv) {
     const std::string_view a = args.flag();
     if (a == "--seconds") {
       o.seconds = cli::parse_number<double>(kProgram, a, args.value(), 0.01, 3600);
+    } else if (a == "--control-seconds") {
+      o.control_seconds = cli::parse_number<double>(kProgram, a, args.value(), 0.01, 3600);
     } else if (a == "--threads") {
       o.threads.clear();
       for (const auto& t : cli::split_list(args.value())) o.threads.push_back(cli::parse_number<WorkerId>(kProgram, a, t, 1, 256));
@@ -231,7 +245,8 @@ int main(int argc, char** argv) {
         const CaseResult& r = results.back();
         if (!o.quiet) {
           std::cerr << kProgram << ": [" << results.size() << "/" << total << "] " << r.policy << " P=" << p
-                    << " slots=" << s << ": " << r.frames << " frames, " << r.updates << " updates, torn " << r.torn
+                    << " slots=" << s << ": " << r.frames << " frames, " << r.seconds << " s, " << r.updates
+                    << " updates, torn " << r.torn
                     << ", reuse " << r.reuse << ", backwards " << r.backwards << " -> "
                     << (r.passed() ? (negative ? "caught" : "ok") : "UNEXPECTED") << "\n";
         }
@@ -240,22 +255,25 @@ int main(int argc, char** argv) {
   }
   bool ok = true;
   std::ostringstream md, js;
-  md << "# Publication stress (measured, chaos " << o.chaos << " per million, " << o.seconds << " s per case)\n\n"
-     << "| policy | P | slots | frames | updates | driver waits | torn | reuse | backwards | lag histogram (frames behind: draws) | verdict |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "# Publication stress (measured, chaos " << o.chaos << " per million, " << o.seconds
+     << " s per sound case; a negative control runs until caught, at most " << o.control_seconds << " s)\n\n"
+     << "| policy | P | slots | frames | seconds | updates | driver waits | torn | reuse | backwards | lag histogram (frames behind: draws) | verdict |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   js << "{\n  \"cases\": [\n";
   for (std::size_t k = 0; k < results.size(); ++k) {
     const CaseResult& r = results[k];
     ok = ok && r.passed();
     std::ostringstream lag;
     for (const auto& [behind, n] : r.lag) lag << (lag.tellp() > 0 ? ", " : "") << behind << ": " << n;
-    const std::string verdict = r.passed() ? (r.negative_control ? "caught (negative control)" : "ok")
-                                           : (r.negative_control ? "FAIL: negative control not caught" : "FAIL");
-    md << "| " << r.policy << " | " << r.threads << " | " << r.slots << " | " << r.frames << " | " << r.updates << " | "
+    std::ostringstream catch_time;
+    catch_time << r.frames << " frames, " << std::fixed << std::setprecision(1) << r.seconds * 1e3 << " ms";
+    const std::string verdict = r.passed() ? (r.negative_control ? "caught (negative control) after " + catch_time.str() : "ok")
+                                           : (r.negative_control ? "FAIL: negative control not caught in " + catch_time.str() : "FAIL");
+    md << "| " << r.policy << " | " << r.threads << " | " << r.slots << " | " << r.frames << " | " << r.seconds << " | " << r.updates << " | "
        << r.driver_waits << " | " << r.torn << " | " << r.reuse << " | " << r.backwards << " | " << lag.str() << " | "
        << verdict << " |\n";
     js << "    {\"policy\": \"" << r.policy << "\", \"threads\": " << r.threads << ", \"slots\": " << r.slots
-       << ", \"frames\": " << r.frames << ", \"updates\": " << r.updates << ", \"driver_waits\": " << r.driver_waits
+       << ", \"frames\": " << r.frames << ", \"seconds\": " << r.seconds << ", \"updates\": " << r.updates << ", \"driver_waits\": " << r.driver_waits
        << ", \"torn\": " << r.torn << ", \"reuse\": " << r.reuse << ", \"backwards\": " << r.backwards
        << ", \"negative_control\": " << (r.negative_control ? "true" : "false") << ", \"passed\": "
        << (r.passed() ? "true" : "false") << "}" << (k + 1 < results.size() ? "," : "") << "\n";
