@@ -45,9 +45,12 @@ TEST_CASE("the next frame writes a slot other than the published one") {
 }
 
 // With two slots, the slot retired while the pusher is inside an update is the only candidate for the next
-// frame: the driver must wait until the pusher ends that update. The defect reuses it at once.
+// frame: the driver must wait until the pusher ends that update. The defect reuses it at once. The pusher holds
+// its update for up to `patience`, or until the driver has prepared: a sound driver never prepares before the
+// update ends (so 50 ms show a wait), while a defective one does as soon as its thread gets a core, however
+// late the machine's load lets that be (so its bound is long and never reached).
 template <class Policy>
-bool driver_waits_for_the_pusher() {
+bool driver_waits_for_the_pusher(std::chrono::milliseconds patience) {
   Publication<Policy> p({1}, 2);
   p.prepare_frame();
   p.finish_surface(0);  // frame 1 published: slot a
@@ -60,7 +63,10 @@ bool driver_waits_for_the_pusher() {
     p.prepare_frame();  // frame 3 needs a
     prepared.store(true);
   });
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const auto deadline = std::chrono::steady_clock::now() + patience;
+  while (!prepared.load() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
   const bool reused_early = prepared.load();
   p.end_update();  // … until here
   driver.join();
@@ -69,11 +75,11 @@ bool driver_waits_for_the_pusher() {
 }
 
 TEST_CASE("a retired slot is reused only after the pusher has passed a later update") {
-  CHECK(driver_waits_for_the_pusher<fs::PublicationOrders>());
+  CHECK(driver_waits_for_the_pusher<fs::PublicationOrders>(std::chrono::milliseconds(50)));
 }
 
 TEST_CASE("negative control: without the grace period the slot is reused under the pusher") {
-  CHECK_FALSE(driver_waits_for_the_pusher<fs::BrokenReuseWithoutGrace>());
+  CHECK_FALSE(driver_waits_for_the_pusher<fs::BrokenReuseWithoutGrace>(std::chrono::seconds(60)));
 }
 
 TEST_CASE("negative control: publishing each surface exposes a half-written component") {
