@@ -49,7 +49,7 @@ TEST_CASE("normalized sorts and merges touching ranges", "[core][range]") {
   CHECK(frontsteal::normalized(RangeList{}).empty());
 }
 
-TEST_CASE("is_partition accepts exactly the partitions of [0, n)", "[core][range]") {
+TEST_CASE("is_partition accepts exactly the partitions of 0 .. n-1", "[core][range]") {
   using Lists = std::vector<RangeList>;
   CHECK(frontsteal::is_partition(Lists{{{0, 3}}, {{3, 5}, {7, 9}}, {{5, 7}}}, 9));
   CHECK(frontsteal::is_partition(Lists{{}, {}}, 0));
@@ -58,7 +58,7 @@ TEST_CASE("is_partition accepts exactly the partitions of [0, n)", "[core][range
   CHECK_FALSE(frontsteal::is_partition(Lists{{{0, 6}}}, 5));            // out of range
 }
 
-TEST_CASE("block_allocation partitions [0, n) for any worker count", "[core][range]") {
+TEST_CASE("block_allocation partitions 0 .. n-1 for any worker count", "[core][range]") {
   for (frontsteal::ItemId n : {0u, 1u, 5u, 1000u}) {
     for (frontsteal::WorkerId p : {1u, 2u, 3u, 8u}) {
       INFO("n=" << n << " p=" << p);

@@ -149,7 +149,7 @@ TEST_CASE("cost traces survive a round trip, and a truncated trace is refused wi
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("calibration files survive a round trip; unknown keys are refused") {
+TEST_CASE("calibration files survive a round trip, and unknown keys are refused") {
   const auto dir = std::filesystem::temp_directory_path() / "frontsteal-calibration-test";
   std::filesystem::create_directories(dir);
   fp::Overheads o;

@@ -112,7 +112,7 @@ TEST_CASE("greedy rendering with the null renderer: statistics add up") {
   for (std::size_t u = 1; u < st.per_update.size(); ++u) CHECK(st.per_update[u].at_seconds >= st.per_update[u - 1].at_seconds);
 }
 
-TEST_CASE("greedy rendering reports the tessellation audit; a planted defect is counted") {
+TEST_CASE("greedy rendering reports the tessellation audit, and counts a planted defect") {
   ts::Model m = ts::load_scene("plant:300", FRONTSTEAL_DATA_DIR);
   ts::assign_components(m, 1e-6);
   rd::GreedyOptions o;

@@ -60,7 +60,7 @@ TEST_CASE("every scheduler runs every item of every frame exactly once", "[sched
   }
 }
 
-TEST_CASE("an item that throws is reported after the frame; every other item still runs", "[schedulers]") {
+TEST_CASE("an item that throws is reported after the frame, and every other item still runs", "[schedulers]") {
   for (const auto& info : sc::scheduler_registry()) {
     if (!runs_here(info) || info.contract != fs::Contract::kExactlyOnce) continue;
     CAPTURE(info.name);

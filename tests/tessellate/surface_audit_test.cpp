@@ -144,7 +144,7 @@ TEST_CASE("negative controls on the default scene: the wave-1 bridge and a dropp
   CHECK(dropped.area > 0);
 }
 
-TEST_CASE("plates with 1 to 8 holes per grid cell: audit clean, probes agree; planted defects caught", "[surface-audit]") {
+TEST_CASE("plates with 1 to 8 holes per grid cell: audit clean, probes agree, planted defects caught", "[surface-audit]") {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   ts::TessellationScratch scratch;

@@ -379,7 +379,7 @@ TEST_CASE("components from adjacency: patches sharing edges join, others stay ap
   CHECK(*by_part["body"].begin() == *by_part["rim"].begin());
 }
 
-TEST_CASE("steady-state frames reuse their buffers; OBJ and PLY export", "[tessellate]") {
+TEST_CASE("steady-state frames reuse their buffers, and OBJ and PLY export", "[tessellate]") {
   const ts::Model m = teapot();
   std::vector<ts::PreparedSurface> prepared;
   for (const ts::Surface& s : m.surfaces) prepared.push_back(ts::prepare_surface(s));
