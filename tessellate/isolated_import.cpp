@@ -31,6 +31,9 @@ std::string one_line(std::string s) {
 }
 
 [[noreturn]] void run_child(int fd, const std::string& path, const ImportOptions& options) {
+  // A reader's crash must end the child by its signal, whatever handlers the program installed (a sanitizer's
+  // handler would print a report and exit(1) instead): the parent names the signal.
+  for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(sig, SIG_DFL);
   std::ostringstream msg;
   int status = 0;
   try {
@@ -150,9 +153,9 @@ ImportReport import_cad_file_isolated(const std::string& path, Model& out, const
   }
   std::istringstream in(text);
   std::string line;
-  if (!std::getline(in, line)) {
-    throw ImportFailure(ImportFailure::Cause::protocol, path + ": " + reader + " process ended (status " +
-                                                            std::to_string(WEXITSTATUS(status)) + ") without a result");
+  if (!std::getline(in, line)) {  // it exited without a word: as much a crash as a signal
+    throw ImportFailure(ImportFailure::Cause::crashed, path + ": " + reader + " crashed (exit status " +
+                                                           std::to_string(WEXITSTATUS(status)) + ", no result) reading this file");
   }
   if (line.starts_with("error ")) {
     const std::string why = line.substr(6);
