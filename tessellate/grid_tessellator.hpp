@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "tessellate/bezier_patch.hpp"
+#include "tessellate/grid_row_kernel.hpp"
 #include "tessellate/step_sizes.hpp"
 
 namespace frontsteal::tess {
@@ -75,6 +76,79 @@ struct RowCurve {
   }
 };
 
+// Two triangles per cell, counter-clockwise seen from the side the normal S_u × S_v points to.
+inline void grid_indices(int nu, int nv, std::uint32_t* index) noexcept {
+  for (int i = 0; i < nu; ++i) {
+    const std::uint32_t row0 = static_cast<std::uint32_t>(i * (nv + 1));
+    const std::uint32_t row1 = row0 + static_cast<std::uint32_t>(nv + 1);
+    for (int j = 0; j < nv; ++j) {
+      const std::uint32_t a = row0 + j, b = row1 + j;
+      index[0] = a, index[1] = b, index[2] = b + 1;
+      index[3] = a, index[4] = b + 1, index[5] = a + 1;
+      index += 6;
+    }
+  }
+}
+
+// Scratch of the single-precision path; keeps its capacity across surfaces and frames.
+struct FloatGridScratch {
+  std::vector<float> basis, derivative, rows;
+  std::vector<std::uint8_t> degenerate;
+};
+
+// The same grid as tessellate_untrimmed (below), each row by the SIMD float kernel (grid_row_kernel.hpp).
+// Use only where float_row_error_bound(patch) is well inside the tolerance (plan_surface decides).
+inline void tessellate_untrimmed_float(const BezierPatch& patch, StepSizes steps, TriangleBuffers& out,
+                                       FloatGridScratch& scratch) {
+  out.clear();
+  const int nu = steps.n_u, nv = steps.n_v, n = nv + 1, dv = patch.degree_v, padded = padded_row(n);
+  scratch.basis.assign(static_cast<std::size_t>((dv + 1) * padded), 0.0f);
+  scratch.derivative.assign(scratch.basis.size(), 0.0f);
+  scratch.rows.resize(static_cast<std::size_t>(6 * padded));
+  scratch.degenerate.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j <= nv; ++j) {
+    const BernsteinTable b = bernstein(dv, static_cast<double>(j) / nv);
+    for (int k = 0; k <= dv; ++k) {
+      scratch.basis[static_cast<std::size_t>(k * padded + j)] = static_cast<float>(b.value[k]);
+      scratch.derivative[static_cast<std::size_t>(k * padded + j)] = static_cast<float>(b.derivative[k]);
+    }
+  }
+  const std::size_t vertices = static_cast<std::size_t>((nu + 1) * n);
+  out.positions.resize(vertices);
+  out.normals.resize(vertices);
+  out.uvs.resize(vertices);
+  out.indices.resize(static_cast<std::size_t>(6 * nu * nv));
+  RowKernelArgs args;
+  args.degree_v = dv;
+  args.count = n;
+  args.basis = scratch.basis.data();
+  args.derivative = scratch.derivative.data();
+  args.degenerate = scratch.degenerate.data();
+  args.scratch = scratch.rows.data();
+  RowCurve row;
+  for (int i = 0; i <= nu; ++i) {
+    const double u = static_cast<double>(i) / nu;
+    row.collapse(patch, bernstein(patch.degree_u, u));  // in double: (m+1)(n+1) terms per row, not per vertex
+    for (int k = 0; k <= dv; ++k) {
+      for (int c = 0; c < 4; ++c) {
+        args.value[k][c] = static_cast<float>(row.value[k][c]);
+        args.du[k][c] = static_cast<float>(row.du[k][c]);
+      }
+    }
+    const std::size_t first = static_cast<std::size_t>(i * n);
+    args.position = &out.positions[first].x;
+    args.normal = &out.normals[first].x;
+    evaluate_row_float(args);
+    for (int j = 0; j <= nv; ++j) {
+      out.uvs[first + static_cast<std::size_t>(j)] = glm::vec2(static_cast<float>(u), static_cast<float>(j) / static_cast<float>(nv));
+      if (scratch.degenerate[static_cast<std::size_t>(j)]) [[unlikely]] {  // collapsed edge
+        out.normals[first + static_cast<std::size_t>(j)] = glm::vec3(evaluate(patch, u, static_cast<double>(j) / nv).normal);
+      }
+    }
+  }
+  grid_indices(nu, nv, out.indices.data());
+}
+
 inline void tessellate_untrimmed(const BezierPatch& patch, StepSizes steps, TriangleBuffers& out,
                                  std::vector<BernsteinTable>& v_basis_scratch) {
   out.clear();
@@ -105,18 +179,7 @@ inline void tessellate_untrimmed(const BezierPatch& patch, StepSizes steps, Tria
       *uv++ = glm::vec2(static_cast<float>(u), static_cast<float>(v));
     }
   }
-  // Two triangles per cell, counter-clockwise seen from the side the normal S_u × S_v points to.
-  std::uint32_t* index = out.indices.data();
-  for (int i = 0; i < nu; ++i) {
-    const std::uint32_t row0 = static_cast<std::uint32_t>(i * (nv + 1));
-    const std::uint32_t row1 = row0 + static_cast<std::uint32_t>(nv + 1);
-    for (int j = 0; j < nv; ++j) {
-      const std::uint32_t a = row0 + j, b = row1 + j;
-      index[0] = a, index[1] = b, index[2] = b + 1;
-      index[3] = a, index[4] = b + 1, index[5] = a + 1;
-      index += 6;
-    }
-  }
+  grid_indices(nu, nv, out.indices.data());
 }
 
 }  // namespace frontsteal::tess

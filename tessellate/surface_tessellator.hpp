@@ -62,6 +62,7 @@ struct TessellationSettings {
   bool frustum_culling = true;
   bool back_face_culling = true;  // solids only
   PlantedDefect planted_defect = PlantedDefect::none;  // tests only
+  bool single_precision = true;  // untrimmed grids in float where the error bound allows (grid_row_kernel.hpp)
 };
 
 enum class Culled : std::uint8_t { no, frustum, back_face };
@@ -73,6 +74,7 @@ struct PreparedSurface {
   Box box;
   double radius = 0;  // of the control points around box.centre()
   NormalCone cone;
+  double float_error = 0;  // float_row_error_bound: the single-precision grid's position error bound
   std::vector<const TrimLoop*> loops;  // trim loops; empty when untrimmed or trimmed by the domain alone
   bool trimmed() const noexcept { return !loops.empty(); }
 };
@@ -102,6 +104,7 @@ inline PreparedSurface prepare_surface(const Surface& s) {
     for (int j = 0; j <= s.patch.degree_v; ++j) p.radius = std::max(p.radius, glm::length(s.patch.point(i, j) - c));
   }
   if (s.solid) p.cone = normal_cone(s.patch);
+  p.float_error = float_row_error_bound(s.patch);
   // A lone outer loop along the domain's boundary trims nothing; with holes, the region tracer needs it (it
   // counts such a loop as winding +1 everywhere rather than walking it).
   const bool only_domain = s.loops.size() == 1 && detail::is_domain_boundary(s.loops[0]);
@@ -120,6 +123,8 @@ struct SurfacePlan {
   // The deviation bound wanted more than max_steps in a direction: the cap holds, so the screen deviation of
   // this surface may exceed the pixel tolerance. Reported per frame, never silent.
   bool capped = false;
+  // The untrimmed grid may be evaluated in single precision: its error bound is within a tenth of epsilon.
+  bool single_precision = false;
 };
 
 inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, const Frustum& frustum,
@@ -145,6 +150,7 @@ inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, 
   plan.capped = d.n_u > settings.max_steps || d.n_v > settings.max_steps;
   const StepSizes z = size_steps(s.bounds, plan.edge_length, settings.max_steps);
   plan.steps = {std::min(std::max(d.n_u, z.n_u), settings.max_steps), std::min(std::max(d.n_v, z.n_v), settings.max_steps)};
+  plan.single_precision = settings.single_precision && s.float_error <= 0.1 * plan.epsilon;
   return plan;
 }
 
@@ -210,6 +216,7 @@ struct TessellationScratch {
   std::vector<PolygonRing> holes;
   std::vector<std::uint32_t> ring_triangles, next, prev;
   TilingAudit tiling;
+  FloatGridScratch float_grid;
   static constexpr std::uint32_t kNone = 0xffff'ffffu;
 };
 
@@ -369,7 +376,11 @@ inline SurfaceResult tessellate_surface(const PreparedSurface& s, const Camera& 
     return culled;
   }
   if (s.trimmed()) return tessellate_trimmed(s, plan, settings, scratch, out);
-  tessellate_untrimmed(s.surface->patch, plan.steps, out, scratch.v_basis);
+  if (plan.single_precision) {
+    tessellate_untrimmed_float(s.surface->patch, plan.steps, out, scratch.float_grid);
+  } else {
+    tessellate_untrimmed(s.surface->patch, plan.steps, out, scratch.v_basis);
+  }
   SurfaceResult r;
   r.steps = plan.steps;
   r.capped = plan.capped;
