@@ -364,11 +364,11 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
   return result;
 }
 
-// The whole per-frame step for one surface: cull, plan, triangulate into `out` (cleared first).
-inline SurfaceResult tessellate_surface(const PreparedSurface& s, const Camera& camera, const Frustum& frustum,
+// Triangulates one surface by a plan made beforehand (plan_surface, possibly changed since, e.g. by a
+// triangle budget: triangle_budget.hpp) into `out` (cleared first).
+inline SurfaceResult tessellate_planned(const PreparedSurface& s, const SurfacePlan& plan,
                                         const TessellationSettings& settings, TessellationScratch& scratch,
                                         TriangleBuffers& out) {
-  const SurfacePlan plan = plan_surface(s, camera, frustum, settings);
   if (plan.culled != Culled::no) {
     out.clear();
     SurfaceResult culled;
@@ -386,6 +386,13 @@ inline SurfaceResult tessellate_surface(const PreparedSurface& s, const Camera& 
   r.capped = plan.capped;
   r.triangles = static_cast<std::uint32_t>(out.triangle_count());
   return r;
+}
+
+// The whole per-frame step for one surface: cull, plan, triangulate into `out` (cleared first).
+inline SurfaceResult tessellate_surface(const PreparedSurface& s, const Camera& camera, const Frustum& frustum,
+                                        const TessellationSettings& settings, TessellationScratch& scratch,
+                                        TriangleBuffers& out) {
+  return tessellate_planned(s, plan_surface(s, camera, frustum, settings), settings, scratch, out);
 }
 
 }  // namespace frontsteal::tess
