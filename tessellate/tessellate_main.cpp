@@ -21,6 +21,7 @@
 #include "tessellate/mesh_export.hpp"
 #include "tessellate/scene_generator.hpp"
 #include "tessellate/surface_tessellator.hpp"
+#include "tessellate/triangle_budget.hpp"
 
 #ifndef FRONTSTEAL_DATA_DIR
 #define FRONTSTEAL_DATA_DIR "data"
@@ -50,6 +51,8 @@ options:
   --tolerance PX    screen-space tolerance in pixels                                   (default 1)
   --size WxH        image size                                                  (default 1280x720)
   --max-steps N     step cap per direction and patch                                   (default 256)
+  --max-triangles N triangle budget per frame: the predicted count is capped by coarsening the surfaces
+                    farthest from the eye first (triangle_budget.hpp); 0: no budget          (default 0)
   --export FILE     also write frame --frame as FILE (.obj: text, 9 significant digits, exact for the
                     float buffers; .ply: binary floats)
   --frame K         the frame to export and to plot                                    (default 0)
@@ -68,6 +71,7 @@ struct Options {
   double tolerance = 1.0;
   int width = 1280, height = 720;
   int max_steps = 256;
+  std::uint64_t max_triangles = 0;  // 0: no budget
   std::string export_file;
   int export_frame = 0;
   std::string plot_surface;
@@ -96,6 +100,8 @@ Options parse(int argc, char** argv) {
       o.height = cli::parse_number<int>(kProgram, "--size", std::string_view(v).substr(x + 1), 16, 16384);
     } else if (a == "--max-steps") {
       o.max_steps = cli::parse_number<int>(kProgram, a, args.value(), 1, 4096);
+    } else if (a == "--max-triangles") {
+      o.max_triangles = cli::parse_number<std::uint64_t>(kProgram, a, args.value(), 0, std::uint64_t{1} << 40);
     } else if (a == "--export") {
       o.export_file = args.value();
       const std::string ext = fsys::path(o.export_file).extension().string();
@@ -139,6 +145,7 @@ struct FrameAudit {
   std::uint64_t trace_failures = 0, tiling_violations = 0, area_mismatches = 0, inconsistent_surfaces = 0, capped = 0;
   double ms = 0;
   std::string first_inconsistent;
+  ts::BudgetOutcome budget;  // with --max-triangles only
 };
 
 // The surface's triangles in (u, v) as filled half-transparent polygons: gnuplot data, script and PNG.
@@ -206,6 +213,7 @@ int main(int argc, char** argv) {
   const ts::Box box = ts::model_box(model);
   ts::TessellationScratch scratch;
   std::vector<ts::TriangleBuffers> buffers(model.surfaces.size());
+  std::vector<ts::SurfacePlan> plans(o.max_triangles > 0 ? prepared.size() : 0);
 
   std::vector<FrameAudit> frames;
   const std::string load_before = load_average();
@@ -215,8 +223,15 @@ int main(int argc, char** argv) {
     FrameAudit a;
     a.frame = f;
     const auto t0 = std::chrono::steady_clock::now();
+    // With a budget, the whole frame is planned first, so that the budget can see every surface's count.
+    if (o.max_triangles > 0) {
+      for (std::size_t k = 0; k < prepared.size(); ++k) plans[k] = ts::plan_surface(prepared[k], cam, frustum, settings);
+      a.budget = ts::apply_triangle_budget(prepared, plans, cam, settings, o.max_triangles);
+    }
     for (std::size_t k = 0; k < prepared.size(); ++k) {
-      const ts::SurfaceResult r = ts::tessellate_surface(prepared[k], cam, frustum, settings, scratch, buffers[k]);
+      const ts::SurfaceResult r = o.max_triangles > 0
+                                      ? ts::tessellate_planned(prepared[k], plans[k], settings, scratch, buffers[k])
+                                      : ts::tessellate_surface(prepared[k], cam, frustum, settings, scratch, buffers[k]);
       if (r.culled != ts::Culled::no) continue;
       ++a.visible;
       a.trimmed += prepared[k].trimmed();
@@ -255,11 +270,18 @@ int main(int argc, char** argv) {
   for (const FrameAudit& a : frames) failing += a.inconsistent_surfaces, capped += a.capped, checked += a.trimmed;
   std::ostringstream table;
   table << "| frame | visible | trimmed | partial cells | triangles | trace failures | tiling violations | area mismatches "
-           "| failing surfaces | capped | ms (1 thread, audit included) |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+           "| failing surfaces | capped | ms (1 thread, audit included) |";
+  if (o.max_triangles > 0) table << " budget | predicted | coarsened surfaces |";
+  table << "\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|" << (o.max_triangles > 0 ? "---:|---:|---:|" : "") << "\n";
   for (const FrameAudit& a : frames) {
     table << "| " << a.frame << " | " << a.visible << " | " << a.trimmed << " | " << a.partial_cells << " | " << a.triangles
           << " | " << a.trace_failures << " | " << a.tiling_violations << " | " << a.area_mismatches << " | "
-          << a.inconsistent_surfaces << " | " << a.capped << " | " << std::fixed << std::setprecision(1) << a.ms << " |\n";
+          << a.inconsistent_surfaces << " | " << a.capped << " | " << std::fixed << std::setprecision(1) << a.ms << " |";
+    if (o.max_triangles > 0) {
+      table << " " << o.max_triangles << " | " << a.budget.predicted_after << (a.budget.met ? "" : " (not met)") << " | "
+            << a.budget.coarsened << " |";
+    }
+    table << "\n";
   }
   const std::string machine = frontsteal::cpu_model();
   std::ostringstream summary;
@@ -269,7 +291,12 @@ int main(int argc, char** argv) {
           << " hardware threads), 1-minute load average " << load_before << " before and " << load_average()
           << " after the run (frame times are disturbed when it exceeds 1); commit " << FRONTSTEAL_GIT_COMMIT
           << ". Audit: " << checked << " trimmed surface-frames checked, " << failing
-          << " failing; surfaces held at the step cap: " << capped << " surface-frames.\n";
+          << " failing; surfaces held at the step cap: " << capped << " surface-frames.";
+  if (o.max_triangles > 0) {
+    summary << " Triangle budget " << o.max_triangles << " per frame: the predicted count is capped by halving the "
+            << "steps of the surfaces farthest from the eye first (triangle counts of trimmed surfaces are estimates).";
+  }
+  summary << "\n";
   std::cout << summary.str() << '\n' << table.str();
   const fsys::path dir(o.out);
   std::ofstream(dir / "tessellate-audit.md") << "# Tessellation audit along the camera path (measured)\n\n"
@@ -288,7 +315,8 @@ int main(int argc, char** argv) {
     std::ofstream js(dir / "tessellate-audit.json");
     js << "{\n  \"kind\": \"measured\", \"scene\": \"" << o.scene << "\", \"surfaces\": " << model.surfaces.size()
        << ", \"frames\": " << o.frames << ", \"tolerance_px\": " << o.tolerance << ", \"image\": [" << o.width << ", "
-       << o.height << "], \"max_steps\": " << o.max_steps << ", \"commit\": \"" << FRONTSTEAL_GIT_COMMIT
+       << o.height << "], \"max_steps\": " << o.max_steps << ", \"max_triangles\": " << o.max_triangles
+       << ", \"commit\": \"" << FRONTSTEAL_GIT_COMMIT
        << "\",\n  \"trimmed_surface_frames\": " << checked << ", \"failing_surface_frames\": " << failing
        << ", \"capped_surface_frames\": " << capped << ",\n  \"per_frame\": [\n";
     for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -297,7 +325,12 @@ int main(int argc, char** argv) {
          << ", \"partial_cells\": " << a.partial_cells << ", \"triangles\": " << a.triangles << ", \"trace_failures\": "
          << a.trace_failures << ", \"tiling_violations\": " << a.tiling_violations << ", \"area_mismatches\": "
          << a.area_mismatches << ", \"failing_surfaces\": " << a.inconsistent_surfaces << ", \"capped\": " << a.capped
-         << ", \"ms\": " << a.ms << "}" << (k + 1 < frames.size() ? "," : "") << "\n";
+         << ", \"ms\": " << a.ms;
+      if (o.max_triangles > 0) {
+        js << ", \"predicted\": " << a.budget.predicted_after << ", \"budget_met\": " << (a.budget.met ? "true" : "false")
+           << ", \"coarsened\": " << a.budget.coarsened;
+      }
+      js << "}" << (k + 1 < frames.size() ? "," : "") << "\n";
     }
     js << "  ]\n}\n";
   }
