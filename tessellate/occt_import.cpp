@@ -387,8 +387,45 @@ BezierPatch mirror_u(const BezierPatch& p) {
   return m;
 }
 
+// Removes spikes: a vertex where the ring turns straight back along the edge it came by (collinear, pointing
+// back). The tracer's walk along a cell edge next to a chain lying on that edge (nudged 10⁻⁶ of a cell off it)
+// leaves such zero-width spikes; they bound no area, and the native format refuses them as retraced edges
+// (loop_validation.hpp), so 34 of bearing.iges's faces were lost before they were removed here.
+void remove_spikes(Polygon2& q) {
+  const auto spike = [](const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+    const glm::dvec2 ab = b - a, bc = c - b;
+    const double cross = ab.x * bc.y - ab.y * bc.x;
+    return glm::dot(ab, bc) < 0 && std::abs(cross) <= 1e-12 * glm::length(ab) * glm::length(bc);
+  };
+  for (bool changed = true; changed && q.size() >= 3;) {
+    changed = false;
+    Polygon2 kept;
+    kept.reserve(q.size());
+    for (const glm::dvec2& p : q) {
+      if (!kept.empty() && kept.back() == p) continue;
+      kept.push_back(p);
+      while (kept.size() >= 3 && spike(kept[kept.size() - 3], kept[kept.size() - 2], kept.back())) {
+        kept.erase(kept.end() - 2);
+        changed = true;
+        if (kept.size() >= 2 && kept[kept.size() - 2] == kept.back()) kept.pop_back();
+      }
+    }
+    // Across the wrap-around: the last point and the first two, the last two and the first.
+    while (kept.size() >= 3 && (spike(kept[kept.size() - 2], kept.back(), kept[0]) || spike(kept.back(), kept[0], kept[1]))) {
+      if (spike(kept[kept.size() - 2], kept.back(), kept[0])) {
+        kept.pop_back();
+      } else {
+        kept.erase(kept.begin());
+      }
+      changed = true;
+    }
+    while (kept.size() > 1 && kept.back() == kept.front()) kept.pop_back();
+    q.swap(kept);
+  }
+}
+
 // A ring of a cell's piece in the patch's [0,1]² (mirrored in u for a reversed face), as a chained polyline
-// loop; empty when it degenerates to fewer than 3 points.
+// loop, spikes removed; empty when it degenerates to fewer than 3 points.
 TrimLoop to_patch_loop(const Polygon2& ring, glm::dvec2 lo, glm::dvec2 hi, bool mirror) {
   Polygon2 q;
   q.reserve(ring.size());
@@ -398,6 +435,7 @@ TrimLoop to_patch_loop(const Polygon2& ring, glm::dvec2 lo, glm::dvec2 hi, bool 
     if (q.empty() || glm::length(t - q.back()) > 1e-13) q.push_back(t);
   }
   while (q.size() > 1 && glm::length(q.back() - q.front()) <= 1e-13) q.pop_back();
+  remove_spikes(q);
   TrimLoop loop;
   if (q.size() < 3) return loop;
   if (mirror) std::reverse(q.begin(), q.end());
