@@ -313,13 +313,16 @@ TEST_CASE("occt import: real CAD files from Debian packages", "[occt]") {
   struct Sample {
     std::string path;
     std::string package;
+    int faces_imported;  // at least this many (Debian 12's files): a drop is a regression, not noise
   };
+  // Not imported on purpose: bearing's one degree-8 face, Top's 67 faces of degree > 7. A stricter native
+  // check once refused 33 of bearing's faces (spikes in the pieces' rings) and no test noticed: hence these.
   const std::vector<Sample> samples = {
-      {"/usr/share/opencascade/data/iges/bearing.iges", "occt-misc"},
-      {"/usr/share/opencascade/data/occ/Top.brep", "occt-misc"},
-      {"/usr/share/opencascade/data/occ/hammer.brep", "occt-misc"},
-      {"/usr/share/doc/calculix-cgx-examples/examples/cad/halter.igs", "calculix-cgx-examples"},
-      {"/usr/share/doc/gmsh-doc/doc/gmsh/tutorial/t20_data.step.gz", "gmsh-doc"},
+      {"/usr/share/opencascade/data/iges/bearing.iges", "occt-misc", 212},
+      {"/usr/share/opencascade/data/occ/Top.brep", "occt-misc", 257},
+      {"/usr/share/opencascade/data/occ/hammer.brep", "occt-misc", 45},
+      {"/usr/share/doc/calculix-cgx-examples/examples/cad/halter.igs", "calculix-cgx-examples", 105},
+      {"/usr/share/doc/gmsh-doc/doc/gmsh/tutorial/t20_data.step.gz", "gmsh-doc", 21},
   };
   TempDir dir;
   int imported = 0;
@@ -345,7 +348,7 @@ TEST_CASE("occt import: real CAD files from Debian packages", "[occt]") {
     CHECK(report.faces > 0);
     CHECK(report.surfaces > 0);
     CHECK(report.surfaces == static_cast<int>(model.surfaces.size()));
-    CHECK(report.faces_imported > 0);
+    CHECK(report.faces_imported >= sample.faces_imported);
     // Every surface valid in the native format: loops closed, inside [0,1]², oriented, not self-intersecting.
     require_round_trip(model);
     // The faces taken whole have OCCT's area (up to the p-curves' sampling).
