@@ -2,6 +2,7 @@
 #include "tessellate/grid_row_kernel.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace frontsteal::tess {
@@ -98,14 +99,22 @@ void row_baseline(const RowKernelArgs& a) noexcept { dispatch_degree<4>(a); }
 
 }  // namespace
 
+namespace {
+std::atomic<bool> g_force_baseline{false};  // set_row_kernel_build (tests)
+}  // namespace
+
 void evaluate_row_float(const RowKernelArgs& a) noexcept {
   // Chosen once, by the features of the CPU it runs on (not by its model name).
   static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  if (avx2) {
+  if (avx2 && !g_force_baseline.load(std::memory_order_relaxed)) {
     row_avx2(a);
   } else {
     row_baseline(a);
   }
+}
+
+void set_row_kernel_build(RowKernelBuild build) noexcept {
+  g_force_baseline.store(build == RowKernelBuild::baseline, std::memory_order_relaxed);
 }
 
 double float_row_error_bound(const BezierPatch& patch) noexcept {

@@ -42,6 +42,11 @@ struct RowKernelArgs {
 
 void evaluate_row_float(const RowKernelArgs& args) noexcept;
 
+// Which build of the kernel evaluate_row_float runs: the CPU's best (default), or the x86-64 baseline, so
+// tests check both on a machine with AVX2.
+enum class RowKernelBuild : std::uint8_t { best_for_cpu, baseline };
+void set_row_kernel_build(RowKernelBuild build) noexcept;
+
 // A bound on the absolute position error of evaluate_row_float for this patch: each homogeneous sum of
 // degree_v+1 terms (basis in [0,1], summing to 1) errs by at most (degree_v+2)·u·max|R| with u = 2⁻²⁴,
 // the division by w multiplies the relative error by about 2 and the value by max|P|·(w_max/w_min) … so
