@@ -22,6 +22,15 @@ inline std::string cpu_model() {
   return "unknown CPU";
 }
 
+// The 1-minute load average from /proc/loadavg, as written there, or "unknown": results files say how busy
+// the machine was while they were measured.
+inline std::string load_average_1min() {
+  std::ifstream in("/proc/loadavg");
+  std::string one;
+  in >> one;
+  return one.empty() ? "unknown" : one;
+}
+
 // The median of v (0 for an empty v); the mean of the two middle values for an even count.
 inline double median(std::vector<double> v) {
   if (v.empty()) return 0;

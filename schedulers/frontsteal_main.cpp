@@ -156,13 +156,9 @@ Options parse(int argc, char** argv) {
       o.plot = false;
     } else if (a == "--plant-defect") {
       const std::string_view d = args.value();
-      if (d == "wave1-bridge") {
-        o.planted_defect = ts::PlantedDefect::bridge_to_first_copy;
-      } else if (d == "drop-ear") {
-        o.planted_defect = ts::PlantedDefect::drop_ear;
-      } else {
-        usage_error("--plant-defect expects wave1-bridge or drop-ear, got '" + std::string(d) + "'");
-      }
+      const auto defect = ts::planted_defect_named(d);
+      if (!defect) usage_error("--plant-defect expects wave1-bridge or drop-ear, got '" + std::string(d) + "'");
+      o.planted_defect = *defect;
     } else if (a == "--quiet") {
       o.quiet = true;
     } else {

@@ -33,6 +33,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -53,6 +55,13 @@ namespace frontsteal::tess {
 // catches it. `bridge_to_first_copy` is the wave-1 defect (polygon_triangulation.hpp, step 1); `drop_ear`
 // leaves out the first triangle of every piece with more than one.
 enum class PlantedDefect : std::uint8_t { none, bridge_to_first_copy, drop_ear };
+
+// The names the command lines use: wave1-bridge, drop-ear.
+inline std::optional<PlantedDefect> planted_defect_named(std::string_view name) {
+  if (name == "wave1-bridge") return PlantedDefect::bridge_to_first_copy;
+  if (name == "drop-ear") return PlantedDefect::drop_ear;
+  return std::nullopt;
+}
 
 struct TessellationSettings {
   double pixel_tolerance = 1.0;   // largest screen-space deviation of the triangles from the surface, pixels

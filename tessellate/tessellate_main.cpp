@@ -112,13 +112,9 @@ Options parse(int argc, char** argv) {
       o.plot_surface = args.value();
     } else if (a == "--plant-defect") {
       const std::string_view d = args.value();
-      if (d == "wave1-bridge") {
-        o.planted_defect = ts::PlantedDefect::bridge_to_first_copy;
-      } else if (d == "drop-ear") {
-        o.planted_defect = ts::PlantedDefect::drop_ear;
-      } else {
-        cli::usage_error(kProgram, "--plant-defect expects wave1-bridge or drop-ear, got '" + std::string(d) + "'");
-      }
+      const auto defect = ts::planted_defect_named(d);
+      if (!defect) cli::usage_error(kProgram, "--plant-defect expects wave1-bridge or drop-ear, got '" + std::string(d) + "'");
+      o.planted_defect = *defect;
     } else if (a == "--out") {
       o.out = args.value();
     } else if (a == "--quiet") {
@@ -129,14 +125,6 @@ Options parse(int argc, char** argv) {
   }
   if (o.export_frame >= o.frames) cli::usage_error(kProgram, "--frame must be below --frames");
   return o;
-}
-
-// The 1-minute load average: the frame times are only meaningful on a quiet machine, so the report says.
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one;
-  in >> one;
-  return one.empty() ? "unknown" : one;
 }
 
 struct FrameAudit {
@@ -216,7 +204,7 @@ int main(int argc, char** argv) {
   std::vector<ts::SurfacePlan> plans(o.max_triangles > 0 ? prepared.size() : 0);
 
   std::vector<FrameAudit> frames;
-  const std::string load_before = load_average();
+  const std::string load_before = frontsteal::load_average_1min();
   for (int f = 0; f < o.frames; ++f) {
     const ts::Camera cam = ts::camera_on_path(box, f, o.frames, o.width, o.height);
     const ts::Frustum frustum = ts::Frustum::of(cam);
@@ -288,7 +276,7 @@ int main(int argc, char** argv) {
   summary << "Scene `" << o.scene << "` (" << model.surfaces.size() << " surfaces), " << o.frames << " frames along the "
           << "camera path (orbit, then zoom), " << o.width << "x" << o.height << ", tolerance " << o.tolerance
           << " px, step cap " << o.max_steps << ". Machine: " << machine << " (" << std::thread::hardware_concurrency()
-          << " hardware threads), 1-minute load average " << load_before << " before and " << load_average()
+          << " hardware threads), 1-minute load average " << load_before << " before and " << frontsteal::load_average_1min()
           << " after the run (frame times are disturbed when it exceeds 1); commit " << FRONTSTEAL_GIT_COMMIT
           << ". Audit: " << checked << " trimmed surface-frames checked, " << failing
           << " failing; surfaces held at the step cap: " << capped << " surface-frames.";

@@ -143,13 +143,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string one;
-  in >> one;
-  return one.empty() ? "unknown" : one;
-}
-
 // ---- statistics of repeated timings ------------------------------------------------------------------------
 
 struct Timing {
@@ -460,7 +453,7 @@ int main(int argc, char** argv) {
   }
   const fsys::path scratch_dir = fsys::temp_directory_path() / ("frontsteal_brepmesh_" + std::to_string(::getpid()));
   fsys::create_directories(scratch_dir);
-  const std::string load_before = load_average();
+  const std::string load_before = frontsteal::load_average_1min();
   std::vector<Row> rows;
   std::vector<std::string> missing;
   for (const std::string& file : o.files) {
@@ -479,7 +472,7 @@ int main(int argc, char** argv) {
     }
   }
   fsys::remove_all(scratch_dir, ec);
-  const std::string load_after = load_average();
+  const std::string load_after = frontsteal::load_average_1min();
 
   // Stamp: machine, commit, date, load average.
   const std::time_t now = std::time(nullptr);
