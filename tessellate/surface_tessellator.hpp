@@ -288,6 +288,18 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
   scratch.corner_vertex.assign(static_cast<std::size_t>((nu + 1) * (nv + 1)), TessellationScratch::kNone);
   scratch.trim_vertex.assign(trimmer.points().size(), TessellationScratch::kNone);
 
+  // Grid corners by rows collapsed once (RowCurve: 3(n+1) terms per vertex instead of 3(m+1)(n+1)). Cells are
+  // visited row by row and use grid rows i and i+1, which differ in parity: one cached row per parity.
+  RowCurve rows[2];
+  int cached_row[2] = {-1, -1};
+  const auto grid_row = [&](int i) -> const RowCurve& {
+    const int slot = i & 1;
+    if (cached_row[slot] != i) {
+      rows[slot].collapse(patch, scratch.u_basis[i]);
+      cached_row[slot] = i;
+    }
+    return rows[slot];
+  };
   const auto vertex = [&](std::uint32_t id) -> std::uint32_t {
     if (id & GridTrimmer::kCornerBit) {
       const std::uint32_t k = id & ~GridTrimmer::kCornerBit;
@@ -295,7 +307,7 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
       if (slot == TessellationScratch::kNone) {
         const int i = static_cast<int>(k / static_cast<std::uint32_t>(nv + 1));
         const int j = static_cast<int>(k % static_cast<std::uint32_t>(nv + 1));
-        SurfacePoint sp = evaluate(patch, scratch.u_basis[i], scratch.v_basis[j]);
+        SurfacePoint sp = grid_row(i).at(patch.degree_v, scratch.v_basis[j]);
         if (sp.normal == glm::dvec3(0.0)) sp.normal = evaluate(patch, scratch.u_lines[i], scratch.v_lines[j]).normal;
         slot = out.add_vertex(sp, scratch.u_lines[i], scratch.v_lines[j]);
       }
