@@ -53,6 +53,7 @@
 #include "core/labelled_access.hpp"
 #include "core/policies.hpp"
 #include "core/stealing_protocol.hpp"
+#include "core/thread_cpu_time.hpp"
 
 namespace frontsteal {
 
@@ -159,6 +160,7 @@ class StealingWorkers {
     me.stats = WorkerFrameStats{};
     me.failure.reset();
     const auto start = Clock::now();
+    const std::int64_t cpu_start = thread_cpu_ns();  // once per frame: the clock is a system call
     me.log.clear();
     for (;;) {
       drain(me, w, process);
@@ -166,7 +168,9 @@ class StealingWorkers {
       if (!find_work(me)) break;
     }
     me.next_list = normalized(me.log);  // sorted, adjacent ranges merged: lists do not fragment without bound
-    me.stats.idle_ns = elapsed_ns(start) - me.stats.busy_ns;
+    me.stats.active_ns = elapsed_ns(start);
+    me.stats.cpu_ns = thread_cpu_ns() - cpu_start;
+    me.stats.idle_ns = me.stats.active_ns - me.stats.busy_ns;
     A::write(me.handover, frame);  // ... and hands them back (ordered by E3, then E5)
     arrive(frame);
   }

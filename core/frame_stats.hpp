@@ -21,6 +21,10 @@ struct WorkerFrameStats {
   std::int64_t busy_ns = 0;              // time inside the owner loop (claiming and processing); other
                                          // schedulers: time processing the items of each claim
   std::int64_t idle_ns = 0;              // the rest of the worker's frame: stealing and waiting for the end
+  std::int64_t active_ns = 0;            // wall time of the worker's part of the frame (wake-up to arrival);
+                                         // oneTBB: the sum of its claims (its threads join the arena freely)
+  std::int64_t cpu_ns = 0;               // thread CPU time over the same span (core/thread_cpu_time.hpp):
+                                         // active − cpu is time off a CPU (descheduled, or asleep on a lock)
 
   WorkerFrameStats& operator+=(const WorkerFrameStats& o) {
     items_processed += o.items_processed;
@@ -35,6 +39,8 @@ struct WorkerFrameStats {
     lock_wait_ns += o.lock_wait_ns;
     busy_ns += o.busy_ns;
     idle_ns += o.idle_ns;
+    active_ns += o.active_ns;
+    cpu_ns += o.cpu_ns;
     return *this;
   }
 };

@@ -37,7 +37,8 @@ class ChaseLevScheduler final : public Scheduler {
     process_ = &process;
     remaining_.store(items_, std::memory_order::relaxed);  // published by the team's release (T1)
     for (auto& s : slots_) s.stats = {};
-    return collect(stats_, slots_, team_.run_frame());
+    const std::int64_t wall_ns = team_.run_frame();
+    return collect(stats_, slots_, wall_ns, &team_.spans());
   }
   WorkerId worker_count() const noexcept override { return team_.size(); }
 

@@ -27,7 +27,8 @@ class ChunkedCounterScheduler final : public Scheduler {
     process_ = &process;
     next_.store(0, std::memory_order::relaxed);  // published by the team's release (T1)
     for (auto& s : slots_) s.stats = {};
-    return collect(stats_, slots_, team_.run_frame());
+    const std::int64_t wall_ns = team_.run_frame();
+    return collect(stats_, slots_, wall_ns, &team_.spans());
   }
   WorkerId worker_count() const noexcept override { return team_.size(); }
   ItemId grain() const noexcept { return grain_; }

@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include "schedulers/library_schedulers.hpp"
+#include "core/thread_cpu_time.hpp"
 #include "schedulers/worker_team.hpp"
 
 namespace frontsteal::sched {
@@ -24,12 +25,18 @@ class OpenMpDynamicScheduler final : public Scheduler {
     {
       const auto w = static_cast<WorkerId>(omp_get_thread_num());
       WorkerSlot& me = slots_[w];
+      // Each thread's span: from entering the region to leaving the loop (nowait), before the region's closing
+      // barrier, where libgomp spins and then sleeps: that wait is not part of the frame's work.
+      const Clock::time_point span_start = Clock::now();
+      const std::int64_t cpu_start = thread_cpu_ns();
 #pragma omp for schedule(dynamic, 1) nowait
       for (long long c = 0; c < chunks; ++c) {
         const auto first = static_cast<ItemId>(c * grain_);
         const auto last = static_cast<ItemId>(std::min<long long>((c + 1) * grain_, items_));
         me.run_range(process, first, last, w, timed_);
       }
+      me.stats.active_ns = nanoseconds_since(span_start);
+      me.stats.cpu_ns = thread_cpu_ns() - cpu_start;
     }
     return collect(stats_, slots_, nanoseconds_since(start));
   }

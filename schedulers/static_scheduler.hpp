@@ -43,7 +43,8 @@ class StaticScheduler final : public Scheduler {
   const FrameStats& run_frame(ItemFunctionRef process) override {
     process_ = &process;
     for (auto& s : slots_) s.stats = {};
-    return collect(stats_, slots_, team_.run_frame());
+    const std::int64_t wall_ns = team_.run_frame();
+    return collect(stats_, slots_, wall_ns, &team_.spans());
   }
   WorkerId worker_count() const noexcept override { return team_.size(); }
   const Assignment& assignment() const noexcept { return assignment_; }

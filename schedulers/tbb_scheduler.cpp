@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <thread>
 
+#include "core/thread_cpu_time.hpp"
 #include "schedulers/library_schedulers.hpp"
 #include "schedulers/worker_team.hpp"
 
@@ -36,7 +37,15 @@ class TbbAffinityScheduler final : public Scheduler {
           [&](const tbb::blocked_range<ItemId>& r) {
             const int slot = tbb::this_task_arena::current_thread_index();
             const auto w = static_cast<WorkerId>(slot);
+            // oneTBB's threads enter and leave the arena as they please, so there is no per-frame span to
+            // time: CPU time is read around each claimed range instead (affinity_partitioner claims a few
+            // ranges per thread and frame, so the system-call clock costs little), and active_ns is the
+            // claims' wall time. Here active − cpu is the time descheduled while holding work.
+            const Clock::time_point start = Clock::now();
+            const std::int64_t cpu_start = thread_cpu_ns();
             slots_[w].run_range(process, r.begin(), r.end(), w, timed_);
+            slots_[w].stats.cpu_ns += thread_cpu_ns() - cpu_start;
+            slots_[w].stats.active_ns += nanoseconds_since(start);
           },
           partitioner_);
     });

@@ -27,6 +27,7 @@
 #include "core/frame_loop.hpp"
 #include "core/frame_stats.hpp"
 #include "core/stealing_scheduler.hpp"
+#include "core/thread_cpu_time.hpp"
 #include "schedulers/scheduler.hpp"
 
 namespace frontsteal::sched {
@@ -59,14 +60,26 @@ struct alignas(64) WorkerSlot {
   }
 };
 
-// Gathers the slots into a FrameStats and throws ItemError for the first recorded failure.
-inline const FrameStats& collect(FrameStats& out, std::vector<WorkerSlot>& slots, std::int64_t wall_ns) {
+// One worker's part of a frame, measured by whoever runs it: wall time and thread CPU time of the span.
+struct alignas(64) WorkerSpan {
+  std::int64_t active_ns = 0;
+  std::int64_t cpu_ns = 0;
+};
+
+// Gathers the slots into a FrameStats and throws ItemError for the first recorded failure. `spans`, when
+// given (one per slot), supplies active_ns and cpu_ns; otherwise the slots carry their own (OpenMP, oneTBB).
+inline const FrameStats& collect(FrameStats& out, std::vector<WorkerSlot>& slots, std::int64_t wall_ns,
+                                 const std::vector<WorkerSpan>* spans = nullptr) {
   ++out.frame;
   out.wall_ns = wall_ns;
   out.workers.resize(slots.size());
   for (std::size_t w = 0; w < slots.size(); ++w) {
     out.workers[w] = slots[w].stats;
     out.workers[w].idle_ns = wall_ns - slots[w].stats.busy_ns;
+    if (spans) {
+      out.workers[w].active_ns = (*spans)[w].active_ns;
+      out.workers[w].cpu_ns = (*spans)[w].cpu_ns;
+    }
   }
   for (auto& s : slots) {
     if (s.failure) {
@@ -82,7 +95,7 @@ class WorkerTeam {
  public:
   using Body = std::function<void(WorkerId)>;
 
-  WorkerTeam(WorkerId workers, Body body) : workers_(workers), body_(std::move(body)) {
+  WorkerTeam(WorkerId workers, Body body) : workers_(workers), body_(std::move(body)), spans_(workers) {
     if (workers == 0) throw std::invalid_argument("frontsteal: at least one worker is needed");
     threads_.reserve(workers);
     for (WorkerId w = 0; w < workers; ++w) threads_.emplace_back([this, w] { worker_main(w); });
@@ -107,6 +120,8 @@ class WorkerTeam {
     return nanoseconds_since(start);
   }
   WorkerId size() const noexcept { return workers_; }
+  // Per worker, its part of the last frame (read by the caller after run_frame: ordered by T3 -> T4).
+  const std::vector<WorkerSpan>& spans() const noexcept { return spans_; }
 
  private:
   void publish(std::uint32_t k) {
@@ -120,7 +135,11 @@ class WorkerTeam {
         started_.wait(s, std::memory_order::acquire);  // T2
       }
       if (stop_.load(std::memory_order::relaxed)) return;
+      // The span is timed here, once per frame, so every team-based scheduler reports CPU time the same way.
+      const Clock::time_point start = Clock::now();
+      const std::int64_t cpu_start = thread_cpu_ns();
       body_(w);
+      spans_[w] = WorkerSpan{nanoseconds_since(start), thread_cpu_ns() - cpu_start};
       const std::uint64_t a = arrived_.fetch_add(1, std::memory_order::acq_rel) + 1;  // T3
       if (a == std::uint64_t{k} * workers_) arrived_.notify_all();
     }
@@ -132,6 +151,7 @@ class WorkerTeam {
   alignas(64) std::atomic<std::uint32_t> started_{0};
   alignas(64) std::atomic<std::uint64_t> arrived_{0};
   std::atomic<bool> stop_{false};
+  std::vector<WorkerSpan> spans_;  // spans_[w]: written by worker w before T3
   std::vector<std::thread> threads_;
 };
 

@@ -112,6 +112,27 @@ TEST_CASE("oversubscribed schedulers really run P threads", "[schedulers]") {
   }
 }
 
+TEST_CASE("every scheduler reports CPU time beside busy time; a worker off its CPU shows", "[schedulers]") {
+  // Spinning items: the workers' spans are on a CPU, so cpu ≈ active (never above it, bar clock skew).
+  // Sleeping items: busy wall time goes on, CPU time does not: active − cpu is most of the span. This is what
+  // tells "descheduled" (or blocked) apart from "idle for lack of work" in the main job.
+  for (const auto& info : sc::scheduler_registry()) {
+    if (!runs_here(info)) continue;
+    CAPTURE(info.name);
+    auto s = info.make({.workers = 2, .items = 64, .grain = 1, .seed = 1}, {});
+    auto spin = [](fs::ItemId, fs::WorkerId) { fs::spin_work(20000); };
+    const fs::WorkerFrameStats spun = s->run_frame(spin).totals();
+    CHECK(spun.cpu_ns > 0);
+    CHECK(spun.active_ns > 0);
+    CHECK(spun.cpu_ns <= spun.active_ns + 2'000'000);
+    auto nap = [](fs::ItemId, fs::WorkerId) { std::this_thread::sleep_for(std::chrono::microseconds(300)); };
+    const fs::FrameStats& slept = s->run_frame(nap);
+    const fs::WorkerFrameStats t = slept.totals();
+    CHECK(t.busy_ns > 64 * 300'000 / 2);
+    CHECK(t.active_ns - t.cpu_ns > t.active_ns / 2);
+  }
+}
+
 TEST_CASE("the audit catches the racy-counter negative control", "[schedulers][negative-control]") {
   // The planted lost-update defect of stress_targets.hpp: frames at P = 2 must show duplicates. On an idle
   // machine the first frame does; when the other core is busy (ctest -j) it takes a preemption inside the
