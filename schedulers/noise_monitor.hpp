@@ -1,0 +1,70 @@
+// noise_monitor.hpp — was the machine quiet while we measured? A monitor that samples the kernel's counters
+// around every measured path and says when the answer is no.
+//
+// What it reads (proc(5)):
+//   /proc/stat, line "cpu"   machine-wide ticks since boot: user nice system idle iowait irq softirq steal …
+//   /proc/self/stat          our own utime + stime (fields 14 and 15), in the same ticks (sysconf(_SC_CLK_TCK))
+//   /proc/loadavg            the 1-minute load average (context only: it lags by a minute and counts our threads)
+// Between two samples: the machine's busy ticks (user … softirq) minus ours are the *other processes'* CPU
+// time; steal is time a hypervisor gave our vCPUs to someone else. Either, as a share of all ticks of the
+// window, above a threshold (default 10 % and 5 %) means we shared the machine. Ticks are coarse (10 ms), so a
+// window also needs at least kMinOtherTicks ticks of others' work before it counts as busy: a quiet
+// 20 ms window must not be flagged by one stray tick.
+//
+// The decision (assess, spread_of) is pure, over parsed samples, so tests drive it with synthetic
+// /proc text for both a quiet and a loaded machine; sample_now() is the only part that reads files.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace frontsteal::noise {
+
+struct ProcSample {
+  bool ok = false;                 // every file parsed
+  std::uint64_t total_ticks = 0;   // all columns of the "cpu" line
+  std::uint64_t busy_ticks = 0;    // user + nice + system + irq + softirq (guest time is inside user)
+  std::uint64_t steal_ticks = 0;
+  std::uint64_t self_ticks = 0;    // this process: utime + stime
+  double load1 = 0;                // 1-minute load average
+  double wall_s = 0;               // steady clock when sampled
+};
+
+// Parses the text of /proc/stat, /proc/self/stat and /proc/loadavg; ok = false if any is malformed.
+ProcSample parse_sample(std::string_view proc_stat, std::string_view self_stat, std::string_view loadavg,
+                        double wall_s);
+// Reads the three files now.
+ProcSample sample_now();
+
+// What happened between two samples; windows add up (a verdict depends on many short windows).
+struct Usage {
+  std::uint64_t total_ticks = 0, busy_ticks = 0, steal_ticks = 0, self_ticks = 0;
+  double wall_s = 0;
+  int windows = 0;
+  bool ok = true;
+  Usage& operator+=(const Usage& o);
+  std::uint64_t other_ticks() const;  // busy − self, never negative (the two counters round differently)
+  double other_share() const;         // of all ticks in the window(s)
+  double steal_share() const;
+};
+Usage usage_between(const ProcSample& before, const ProcSample& after);
+
+struct Thresholds {
+  double other_share = 0.10;  // others' CPU, as a share of the machine
+  double steal_share = 0.05;
+  double spread = 0.05;       // serial loop's repeats: max / min − 1
+};
+inline constexpr std::uint64_t kMinOtherTicks = 5;  // 50 ms at the usual 100 Hz
+
+struct Assessment {
+  bool busy = false;
+  std::string reason;  // empty when quiet
+};
+Assessment assess(const Usage& u, const Thresholds& t);
+
+// max / min − 1 of positive values (0 for fewer than two).
+double spread_of(const std::vector<double>& values);
+
+}  // namespace frontsteal::noise

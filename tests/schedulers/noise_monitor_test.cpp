@@ -1,0 +1,100 @@
+// noise_monitor_test.cpp — the monitor's decision on synthetic /proc samples: a quiet machine stays quiet
+// (negative control), a loaded one is flagged (positive control), and the parser reads the real files.
+#include "schedulers/noise_monitor.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <string>
+
+namespace nz = frontsteal::noise;
+
+namespace {
+
+// A /proc/stat "cpu" line, a /proc/self/stat line (comm with a space and a parenthesis, as comm may be) and
+// a /proc/loadavg line, with the given counters.
+nz::ProcSample sample(std::uint64_t user, std::uint64_t system, std::uint64_t idle, std::uint64_t steal,
+                      std::uint64_t self_utime, std::uint64_t self_stime, double wall_s, double load = 0.5) {
+  const std::string stat = "cpu  " + std::to_string(user) + " 0 " + std::to_string(system) + " " +
+                           std::to_string(idle) + " 3 0 1 " + std::to_string(steal) +
+                           " 0 0\ncpu0 1 2 3 4 5 6 7 8 0 0\nintr 12345\n";
+  const std::string self = "4242 (front steal) R 1 4242 4242 0 -1 4194304 100 0 0 0 " +
+                           std::to_string(self_utime) + " " + std::to_string(self_stime) + " 0 0 20 0 3 0 77 0 0";
+  const std::string loadavg = std::to_string(load) + " 0.40 0.30 2/123 4567\n";
+  return nz::parse_sample(stat, self, loadavg, wall_s);
+}
+
+}  // namespace
+
+TEST_CASE("the parser reads /proc/stat, /proc/self/stat and /proc/loadavg", "[noise]") {
+  const nz::ProcSample s = sample(1000, 200, 5000, 7, 40, 2, 1.0, 1.25);
+  REQUIRE(s.ok);
+  CHECK(s.busy_ticks == 1000 + 0 + 200 + 0 + 1);
+  CHECK(s.steal_ticks == 7);
+  CHECK(s.total_ticks == s.busy_ticks + 5000 + 3 + 7);
+  CHECK(s.self_ticks == 42);
+  CHECK(s.load1 == Approx(1.25));
+  CHECK_FALSE(nz::parse_sample("intr 1 2 3\n", "1 (x) R", "0.1", 0).ok);
+  CHECK_FALSE(nz::parse_sample("cpu 1 2 3 4 5 6 7 8\n", "no parenthesis here", "0.1", 0).ok);
+}
+
+TEST_CASE("negative control: a quiet machine (all busy ticks ours) is not flagged", "[noise]") {
+  // 2 cores × 100 Hz × 2 s = 400 ticks: we use 390 (our workers), the machine's other work 2 ticks.
+  const nz::ProcSample a = sample(10000, 1000, 50000, 10, 500, 20, 10.0);
+  const nz::ProcSample b = sample(10000 + 380, 1000 + 12, 50000 + 8, 10, 500 + 375, 20 + 15, 12.0);
+  const nz::Usage u = nz::usage_between(a, b);
+  CHECK(u.total_ticks == 400);
+  CHECK(u.other_ticks() == 2);
+  const nz::Assessment verdict = nz::assess(u, nz::Thresholds{});
+  CHECK_FALSE(verdict.busy);
+  CHECK(verdict.reason.empty());
+}
+
+TEST_CASE("positive control: another process on half the machine is flagged, and so is steal", "[noise]") {
+  // Two busy loops on two cores beside our P = 2 run: each side gets about half the machine.
+  const nz::ProcSample a = sample(10000, 1000, 50000, 10, 500, 20, 10.0);
+  const nz::ProcSample b = sample(10000 + 390, 1000 + 6, 50000 + 4, 10, 500 + 195, 20 + 5, 12.0);
+  const nz::Assessment loaded = nz::assess(nz::usage_between(a, b), nz::Thresholds{});
+  CHECK(loaded.busy);
+  CHECK_THAT(loaded.reason, Catch::Contains("other processes used 49.0 %"));
+  // A hypervisor that takes 10 % of the ticks.
+  const nz::ProcSample c = sample(10000 + 340, 1000 + 10, 50000 + 10, 10 + 40, 500 + 340, 20 + 10, 12.0);
+  const nz::Assessment stolen = nz::assess(nz::usage_between(a, c), nz::Thresholds{});
+  CHECK(stolen.busy);
+  CHECK_THAT(stolen.reason, Catch::Contains("stole 10.0 %"));
+}
+
+TEST_CASE("short windows add up; one stray tick in a short window is not 'busy'", "[noise]") {
+  // A 20 ms window holds 4 ticks on 2 cores: one tick of someone else is 25 %, but only one tick.
+  const nz::ProcSample a = sample(100, 10, 1000, 0, 50, 0, 1.00);
+  const nz::ProcSample b = sample(103, 10, 1000, 0, 52, 0, 1.02);
+  const nz::Usage one = nz::usage_between(a, b);
+  CHECK(one.other_share() > 0.2);
+  CHECK_FALSE(nz::assess(one, nz::Thresholds{}).busy);
+  // Twenty such windows, each with others on a quarter of the machine: flagged once added up.
+  nz::Usage many;
+  for (int i = 0; i < 20; ++i) many += one;
+  CHECK(many.windows == 20);
+  CHECK(nz::assess(many, nz::Thresholds{}).busy);
+}
+
+TEST_CASE("unreadable or inconsistent samples are never called quiet", "[noise]") {
+  const nz::ProcSample bad = nz::parse_sample("", "", "", 0);
+  const nz::ProcSample good = sample(1, 1, 1, 0, 1, 0, 0);
+  const nz::Assessment a = nz::assess(nz::usage_between(bad, good), nz::Thresholds{});
+  CHECK(a.busy);
+  CHECK_THAT(a.reason, Catch::Contains("/proc"));
+}
+
+TEST_CASE("spread of repeats is max / min - 1", "[noise]") {
+  CHECK(nz::spread_of({}) == 0);
+  CHECK(nz::spread_of({5.0}) == 0);
+  CHECK(nz::spread_of({100, 104, 102}) == Approx(0.04));
+  CHECK(nz::spread_of({100, 110, 102}) > nz::Thresholds{}.spread);
+}
+
+TEST_CASE("the real files parse on this machine", "[noise]") {
+  const nz::ProcSample s = nz::sample_now();
+  REQUIRE(s.ok);
+  CHECK(s.total_ticks > 0);
+  CHECK(s.self_ticks < s.total_ticks);
+}
