@@ -20,6 +20,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -29,6 +30,9 @@
 #include "core/cli_args.hpp"
 #include "core/execution_counter.hpp"
 #include "core/machine_info.hpp"
+#include "core/paired_comparison.hpp"
+#include "core/thread_pinning.hpp"
+#include "schedulers/noise_monitor.hpp"
 #include "schedulers/registry.hpp"
 #include "schedulers/static_assignment.hpp"
 #include "tessellate/camera_path.hpp"
@@ -45,6 +49,8 @@
 namespace fs = frontsteal;
 namespace sc = frontsteal::sched;
 namespace ts = frontsteal::tess;
+namespace st = frontsteal::stats;
+namespace nz = frontsteal::noise;
 
 namespace {
 
@@ -66,7 +72,11 @@ Tessellates a scene along a deterministic camera path (an orbit of the whole mod
 corner region: the case where round robin becomes imbalanced, paper §3) with a serial loop and with every
 scheduler at P = 1 ... cores and oversubscribed (2 x cores), measured side by side in one run. Shows progress,
 prints a table (frames/s, speed-up over the serial loop, % of ideal T1/P, utilization = busy / (wall x P),
-imbalance = max/mean busy, steals, lock waits) and writes JSON, CSV, markdown and PNG plots (gnuplot).
+CPU time and time off a CPU per worker, imbalance = max/mean busy, steals, lock waits, and per comparison the
+median paired ratio with its 95 % bootstrap interval and a verdict) and writes JSON, CSV, markdown and PNG
+plots (gnuplot). A noise monitor samples /proc before, during and after the measurement; when other processes
+or the hypervisor took a share of the machine, or the serial loop's repeats spread too much, it prints a
+warning and marks the verdicts it affects "unreliable".
 Every frame is audited: each surface tessellated exactly once, triangle count equal to the serial loop's,
 and each trimmed surface's triangles tile its trimmed domain exactly (no overlap, no covered hole, (u, v) area
 equal to the trim loops'). Any failure is reported and the exit status is 1.
@@ -76,7 +86,15 @@ options:
   --schedulers L    comma-separated scheduler names, or all                 (default all; see --list)
   --threads L       comma-separated worker counts P          (default 1..cores, then 2 x cores)
   --frames F        frames along the path, half orbit and half zoom                  (default 24)
-  --repeats R       runs of the path per scheduler and P; medians are reported       (default 5)
+  --repeats R|auto  interleaved runs of the path per scheduler and P; medians, paired ratios and their
+                    bootstrap intervals are reported. auto: 10 when the warm-up pass predicts they fit in
+                    --budget, else as many as fit, at least 5                          (default auto)
+  --budget S        seconds the measured repeats may take under --repeats auto         (default 180)
+  --pin             pin worker w (and the serial loop, as worker 0) to the w-th allowed CPU (off by default)
+  --noise-busy PCT  share of the machine other processes (or steal) may take before a run is unreliable
+                    (default 10)
+  --noise-spread PCT  spread max/min - 1 of the serial loop's repeats above which a run is unreliable
+                    (default 5)
   --tolerance PX    screen-space tolerance in pixels                                 (default 1)
   --grain G         items per claim of the chunked schedulers (queue, counter, Chase-Lev, TBB, OpenMP)
                     (default: each scheduler's own: N/(100P) for queue and counter, 1 for the others)
@@ -90,6 +108,13 @@ options:
   --quiet           no progress lines
   --help            this text
 
+Verdicts: per repeat r, ratio = T_P[r] / T_ref[r] with T_ref the serial loop (same repeat) or queue-mutex at
+the same P; "ahead" when the 95 % interval of the median ratio lies below 1, "behind" above 1, "no difference"
+when it contains 1; the effect is (median ratio - 1) in % of path time (negative: faster).
+Columns cpu and off-cpu: the workers' thread CPU time, and their time in the frame without a CPU
+(descheduled, or asleep on a lock), both over wall x P like utilization; idle for lack of work shows as
+utilization below cpu.
+
 Outputs in DIR: frontsteal.json (everything, per frame), frontsteal.csv and frontsteal.md (the table),
 frontsteal-speedup.png (speed-up against P), frontsteal-frames.png (frame time along the path).
 All figures are measured on this machine; none are simulated.
@@ -100,7 +125,10 @@ struct Options {
   std::vector<std::string> schedulers;  // empty: all exactly-once ones
   std::vector<fs::WorkerId> threads;
   int frames = 24;
-  int repeats = 5;
+  int repeats = 0;  // 0: auto (see --repeats)
+  double budget_s = 180;
+  bool pin = false;
+  nz::Thresholds noise;
   double tolerance = 1.0;
   fs::ItemId grain = 0;
   int width = 1280, height = 720;
@@ -137,7 +165,16 @@ Options parse(int argc, char** argv) {
     } else if (a == "--frames") {
       o.frames = parse_number<int>(a, args.value(), 1, 100000);
     } else if (a == "--repeats") {
-      o.repeats = parse_number<int>(a, args.value(), 1, 1000);
+      const std::string_view v = args.value();
+      o.repeats = v == "auto" ? 0 : parse_number<int>(a, v, 1, 1000);
+    } else if (a == "--budget") {
+      o.budget_s = parse_number<double>(a, args.value(), 1.0, 1e6);
+    } else if (a == "--pin") {
+      o.pin = true;
+    } else if (a == "--noise-busy") {
+      o.noise.other_share = o.noise.steal_share = parse_number<double>(a, args.value(), 0.0, 100.0) / 100.0;
+    } else if (a == "--noise-spread") {
+      o.noise.spread = parse_number<double>(a, args.value(), 0.0, 1000.0) / 100.0;
     } else if (a == "--tolerance") {
       o.tolerance = parse_number<double>(a, args.value(), 0.01, 1000.0);
     } else if (a == "--grain") {
@@ -223,6 +260,8 @@ struct Cell {
   std::vector<double> path_ms;                     // per repeat
   std::vector<std::vector<double>> frame_ms;       // [repeat][frame]
   fs::WorkerFrameStats totals;                     // summed over every frame of every repeat
+  std::vector<fs::WorkerFrameStats> per_worker;    // [worker], summed over every frame of every repeat
+  nz::Usage usage;                                 // the machine while this cell's paths ran (all repeats)
   double busy_over_available = 0, available = 0;   // Σ busy, Σ wall × P (ns)
   double imbalance_sum = 0, imbalance_max = 0;
   std::uint64_t frames_run = 0;
@@ -235,6 +274,7 @@ struct Cell {
 class Progress {
  public:
   Progress(bool quiet, std::size_t total) : quiet_(quiet), total_(total), start_(std::chrono::steady_clock::now()) {}
+  void set_total(std::size_t total) { total_ = total; }
   void step(const std::string& what) {
     ++done_;
     if (quiet_) return;
@@ -258,11 +298,52 @@ std::string fixed(double v, int digits) {
   return s.str();
 }
 
+// The worker id this thread is pinned as under --pin (-1: not pinned). Pinning happens on a thread's first
+// item of a frame rather than inside each scheduler, so it reaches the threads of oneTBB and OpenMP too,
+// which we do not create.
+thread_local int t_pinned_as = -1;
+
+// One comparison as the table shows it: the verdict, or "unreliable (verdict)" when the noise monitor says
+// the machine was not ours while it was measured.
+struct ShownComparison {
+  st::Comparison c;
+  bool reliable = true;
+  std::string noise_reason;  // why not reliable
+  std::string verdict_text() const {
+    std::string v = st::to_string(c.verdict);
+    if (c.verdict != st::Verdict::kTooFewRepeats) v += " " + std::string(c.effect_pct >= 0 ? "+" : "") + fixed(c.effect_pct, 1) + " %";
+    return reliable ? v : "unreliable (" + v + ")";
+  }
+  std::string interval_text() const {
+    return fixed(c.ratio.median, 3) + " [" + fixed(c.ratio.low, 3) + ", " + fixed(c.ratio.high, 3) + "]";
+  }
+  std::string json() const {
+    std::ostringstream j;
+    j << std::setprecision(6) << "{\"ratio_median\": " << c.ratio.median << ", \"ci95_low\": " << c.ratio.low
+      << ", \"ci95_high\": " << c.ratio.high << ", \"pairs\": " << c.pairs << ", \"effect_pct\": " << c.effect_pct
+      << ", \"verdict\": \"" << (reliable ? st::to_string(c.verdict) : "unreliable") << "\", \"verdict_if_reliable\": \""
+      << st::to_string(c.verdict) << "\", \"reliable\": " << (reliable ? "true" : "false") << "}";
+    return j.str();
+  }
+};
+
+std::string usage_json(const nz::Usage& u, const nz::Thresholds& t) {
+  std::ostringstream j;
+  j << std::setprecision(4) << "{\"wall_s\": " << u.wall_s << ", \"windows\": " << u.windows << ", \"ticks\": "
+    << u.total_ticks << ", \"other_share\": " << u.other_share() << ", \"steal_share\": " << u.steal_share()
+    << ", \"busy\": " << (nz::assess(u, t).busy ? "true" : "false") << "}";
+  return j.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
+  Options o = parse(argc, argv);
   const unsigned cores = hardware_cores();
+  // The noise monitor's "before" window runs from here to the first measured repeat (loading, warm-up,
+  // scheduler set-up: our own work, so anything else that ran meanwhile was someone else's).
+  const nz::ProcSample at_start = nz::sample_now();
+  const fs::ThreadPinning pinning;
 
   // ---- the workload -------------------------------------------------------------------------------------
   Workload wl;
@@ -332,13 +413,15 @@ int main(int argc, char** argv) {
     return it == inconsistent.end() ? std::string() : wl.model.surfaces[static_cast<std::size_t>(it - inconsistent.begin())].name;
   };
 
-  const std::size_t total_steps =
-      1 + static_cast<std::size_t>(o.repeats) * (1 + o.threads.size() * o.schedulers.size());
-  Progress progress(o.quiet, total_steps);
+  auto total_steps = [&] {
+    return 1 + static_cast<std::size_t>(std::max(o.repeats, 1)) * (1 + o.threads.size() * o.schedulers.size());
+  };
+  Progress progress(o.quiet, total_steps());
 
   // ---- the serial reference (T1): a plain loop on this thread ---------------------------------------------
   std::vector<double> serial_path_ms;
   std::vector<std::vector<double>> serial_frame_ms;
+  const auto warm_start = std::chrono::steady_clock::now();
   for (int f = 0; f < o.frames; ++f) {  // warm-up pass; also the reference triangle counts
     for (fs::ItemId id = 0; id < n; ++id) tessellate(f, id, 0);
     wl.serial_triangles.push_back(frame_triangles());
@@ -349,7 +432,24 @@ int main(int argc, char** argv) {
                 << " surfaces fail the tessellation audit (first: " << first_inconsistent() << ")\n";
     }
   }
-  progress.step("serial warm-up pass (reference triangle counts)");
+  const double warm_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - warm_start).count();
+  // --repeats auto: one round of repeats costs about T1 for the serial loop plus T1 / min(P, cores) per
+  // scheduler and P (plus the 5 ms settling pause); the warm-up pass gives T1. Ten repeats when they fit in
+  // the budget (the bootstrap interval of a median is informative from about ten pairs), else as many as
+  // fit, but never fewer than 5, the count earlier results were measured with.
+  std::string repeats_note = "set by --repeats";
+  if (o.repeats == 0) {
+    double round_s = warm_s;
+    for (fs::WorkerId p : o.threads) {
+      round_s += o.schedulers.size() * (warm_s / std::min<double>(p, cores) + 0.005);
+    }
+    const int fit = static_cast<int>(o.budget_s / std::max(round_s, 1e-9));
+    o.repeats = std::clamp(fit, 5, 10);
+    repeats_note = "auto: ~" + fixed(round_s, 1) + " s per round predicted, budget " + fixed(o.budget_s, 0) + " s";
+    progress.set_total(total_steps());
+  }
+  progress.step("serial warm-up pass (reference triangle counts); " + std::to_string(o.repeats) + " repeats (" +
+                repeats_note + ")");
 
   // ---- the schedulers -----------------------------------------------------------------------------------
   std::vector<Cell> cells;
@@ -363,9 +463,12 @@ int main(int argc, char** argv) {
   }
   fs::ExecutionCounter runs(n);
 
+  std::vector<nz::Usage> serial_usage;  // per repeat: the machine while the serial loop ran
   auto run_serial_path = [&] {
     std::vector<double> per_frame;
     double total = 0;
+    if (o.pin) pinning.pin_this_thread(0);
+    const nz::ProcSample before = nz::sample_now();
     for (int f = 0; f < o.frames; ++f) {
       const auto t0 = std::chrono::steady_clock::now();
       for (fs::ItemId id = 0; id < n; ++id) tessellate(f, id, 0);
@@ -373,15 +476,29 @@ int main(int argc, char** argv) {
       per_frame.push_back(ms);
       total += ms;
     }
+    serial_usage.push_back(nz::usage_between(before, nz::sample_now()));
+    if (o.pin) pinning.unpin_this_thread();
     serial_path_ms.push_back(total);
     serial_frame_ms.push_back(per_frame);
   };
 
+  // The caller of oneTBB and OpenMP is their worker 0: under --pin it is pinned by its first item, and given
+  // back every CPU after each path so the next scheduler's threads are not born confined to one core.
+  auto unpin_caller = [&] {
+    if (!o.pin) return;
+    pinning.unpin_this_thread();
+    t_pinned_as = -1;
+  };
   auto run_cell_path = [&](Cell& c) {
     std::vector<double> per_frame;
     double total = 0;
+    const nz::ProcSample before = nz::sample_now();
     for (int f = 0; f < o.frames; ++f) {
       auto item = [&](fs::ItemId id, fs::WorkerId w) {
+        if (o.pin && t_pinned_as != static_cast<int>(w)) {
+          pinning.pin_this_thread(w);
+          t_pinned_as = static_cast<int>(w);
+        }
         runs.record(id);
         tessellate(f, id, w);
       };
@@ -390,6 +507,8 @@ int main(int argc, char** argv) {
       per_frame.push_back(ms);
       total += ms;
       c.totals += st.totals();
+      if (c.per_worker.size() < st.workers.size()) c.per_worker.resize(st.workers.size());
+      for (std::size_t w = 0; w < st.workers.size(); ++w) c.per_worker[w] += st.workers[w];
       c.busy_over_available += static_cast<double>(st.totals().busy_ns);
       c.available += static_cast<double>(st.wall_ns) * st.workers.size();
       c.imbalance_sum += st.imbalance();
@@ -419,6 +538,8 @@ int main(int argc, char** argv) {
         }
       }
     }
+    c.usage += nz::usage_between(before, nz::sample_now());
+    unpin_caller();
     c.path_ms.push_back(total);
     c.frame_ms.push_back(per_frame);
   };
@@ -435,9 +556,17 @@ int main(int argc, char** argv) {
       return 1;
     }
     c.setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    auto warm = [&](fs::ItemId id, fs::WorkerId w) { tessellate(0, id, w); };
+    auto warm = [&](fs::ItemId id, fs::WorkerId w) {
+      if (o.pin && t_pinned_as != static_cast<int>(w)) {
+        pinning.pin_this_thread(w);
+        t_pinned_as = static_cast<int>(w);
+      }
+      tessellate(0, id, w);
+    };
     c.instance->run_frame(warm);
+    unpin_caller();
   }
+  const nz::ProcSample measure_start = nz::sample_now();
 
   for (int r = 0; r < o.repeats; ++r) {
     run_serial_path();
@@ -458,24 +587,122 @@ int main(int argc, char** argv) {
     }
   }
 
+  // The noise monitor's "after" window: a short pause with nothing of ours running (before gnuplot, whose
+  // CPU time would count as another process's).
+  const nz::ProcSample measure_end = nz::sample_now();
+  std::this_thread::sleep_for(std::chrono::milliseconds(250));
+  const nz::ProcSample at_end = nz::sample_now();
+
   // ---- results ------------------------------------------------------------------------------------------
   const double t1_ms = median(serial_path_ms);
+
+  // Noise: the machine before (loading and warm-up), during (every measured path, added up) and after; and
+  // the spread of the serial loop's repeats. Each makes every verdict unreliable; a busy machine during one
+  // cell's paths (or its reference's) makes that comparison unreliable.
+  const nz::Usage before_usage = nz::usage_between(at_start, measure_start);
+  const nz::Usage during_usage = nz::usage_between(measure_start, measure_end);
+  const nz::Usage after_usage = nz::usage_between(measure_end, at_end);
+  nz::Usage serial_total;
+  for (const nz::Usage& u : serial_usage) serial_total += u;
+  const double serial_spread = nz::spread_of(serial_path_ms);
+  std::vector<std::string> noise_warnings;  // run-wide reasons: every verdict is unreliable
+  if (const auto a = nz::assess(before_usage, o.noise); a.busy) noise_warnings.push_back("before the measurement: " + a.reason);
+  if (const auto a = nz::assess(during_usage, o.noise); a.busy) noise_warnings.push_back("during the measurement: " + a.reason);
+  if (const auto a = nz::assess(after_usage, o.noise); a.busy) noise_warnings.push_back("after the measurement: " + a.reason);
+  if (serial_spread > o.noise.spread) {
+    noise_warnings.push_back("the serial loop's repeats spread by " + fixed(100 * serial_spread, 1) +
+                             " % (max/min - 1; threshold " + fixed(100 * o.noise.spread, 1) + " %)");
+  }
+  auto judge = [&](const std::vector<double>& candidate, const std::vector<double>& reference, nz::Usage usage) {
+    ShownComparison sc_;
+    sc_.c = st::compare_paired(candidate, reference);
+    const nz::Assessment a = nz::assess(usage, o.noise);
+    if (!noise_warnings.empty() || a.busy) {
+      sc_.reliable = false;
+      sc_.noise_reason = a.busy ? a.reason : noise_warnings.front();
+    }
+    return sc_;
+  };
+  const Cell* no_cell = nullptr;
+  auto queue_cell = [&](fs::WorkerId p) {
+    for (const Cell& q : cells) {
+      if (q.scheduler == "queue-mutex" && q.workers == p) return &q;
+    }
+    return no_cell;
+  };
+
   struct Row {
-    const Cell* cell;
-    double path_ms, fps, speedup, ideal_pct, utilization, imbalance_mean;
+    const Cell* cell = nullptr;
+    double path_ms = 0, fps = 0, speedup = 0, ideal_pct = 0, utilization = 0, imbalance_mean = 0;
+    double cpu_pct = 0, off_cpu_pct = 0, spread_pct = 0;
+    ShownComparison vs_serial;
+    std::optional<ShownComparison> vs_queue;  // absent for queue-mutex itself, or when it was not run
   };
   std::vector<Row> rows;
   bool problems = false;
+  std::size_t verdicts = 0, unreliable = 0;
   for (const Cell& c : cells) {
-    Row row{&c, median(c.path_ms), 0, 0, 0, 0, 0};
+    Row row{};
+    row.cell = &c;
+    row.path_ms = median(c.path_ms);
     row.fps = 1000.0 * o.frames / row.path_ms;
     row.speedup = t1_ms / row.path_ms;
     const double ideal_ms = t1_ms / std::min<double>(c.workers, cores);
     row.ideal_pct = 100.0 * ideal_ms / row.path_ms;
     row.utilization = c.available > 0 ? 100.0 * c.busy_over_available / c.available : 0;
     row.imbalance_mean = c.frames_run ? c.imbalance_sum / c.frames_run : 0;
+    if (c.available > 0) {
+      row.cpu_pct = 100.0 * static_cast<double>(c.totals.cpu_ns) / c.available;
+      row.off_cpu_pct = 100.0 * static_cast<double>(std::max<std::int64_t>(0, c.totals.active_ns - c.totals.cpu_ns)) /
+                        c.available;
+    }
+    row.spread_pct = 100.0 * nz::spread_of(c.path_ms);
+    nz::Usage with_serial = c.usage;
+    with_serial += serial_total;
+    row.vs_serial = judge(c.path_ms, serial_path_ms, with_serial);
+    ++verdicts;
+    if (!row.vs_serial.reliable) ++unreliable;
+    if (const Cell* q = queue_cell(c.workers); q && q != &c) {
+      nz::Usage with_queue = c.usage;
+      with_queue += q->usage;
+      row.vs_queue = judge(c.path_ms, q->path_ms, with_queue);
+      ++verdicts;
+      if (!row.vs_queue->reliable) ++unreliable;
+    }
     rows.push_back(row);
     if (c.failed()) problems = true;
+  }
+  std::vector<double> cell_spreads;
+  for (const Row& r : rows) cell_spreads.push_back(r.spread_pct);
+  std::ostringstream spread_line;
+  spread_line << "spread of the repeats (max/min - 1): serial loop " << fixed(100 * serial_spread, 1)
+              << " %; schedulers: median " << fixed(median(cell_spreads), 1) << " %, max "
+              << fixed(cell_spreads.empty() ? 0.0 : *std::max_element(cell_spreads.begin(), cell_spreads.end()), 1)
+              << " % (workers pinned: " << (o.pin ? "yes, --pin" : "no") << ")";
+  std::ostringstream noise_line;
+  noise_line << "noise monitor: other processes / steal, as a share of the machine: before "
+             << fixed(100 * before_usage.other_share(), 1) << " / " << fixed(100 * before_usage.steal_share(), 1)
+             << " %, during " << fixed(100 * during_usage.other_share(), 1) << " / "
+             << fixed(100 * during_usage.steal_share(), 1) << " %, after " << fixed(100 * after_usage.other_share(), 1)
+             << " / " << fixed(100 * after_usage.steal_share(), 1) << " %; load average " << fixed(at_start.load1, 2)
+             << " before, " << fixed(at_end.load1, 2) << " after (thresholds: " << fixed(100 * o.noise.other_share, 0)
+             << " % busy, " << fixed(100 * o.noise.spread, 0) << " % spread)";
+  std::ostringstream warning;
+  if (unreliable > 0) {
+    warning << "WARNING: noisy machine: " << unreliable << " of " << verdicts
+            << " verdicts are marked unreliable. Reasons:\n";
+    for (const auto& w : noise_warnings) warning << "  - " << w << "\n";
+    std::size_t cell_flags = 0;
+    for (const Row& r : rows) {
+      if (!r.vs_serial.reliable && r.vs_serial.noise_reason != (noise_warnings.empty() ? "" : noise_warnings.front())) {
+        if (cell_flags++ < 5) {
+          warning << "  - while " << r.cell->scheduler << " P=" << r.cell->workers << " or its reference ran: "
+                  << r.vs_serial.noise_reason << "\n";
+        }
+      }
+    }
+    if (cell_flags > 5) warning << "  - ... and " << cell_flags - 5 << " more scheduler/P cells\n";
+    warning << "Re-run on a quiet machine before drawing conclusions from these verdicts.\n";
   }
   std::uint64_t serial_inconsistencies = 0, capped_total = 0, capped_max = 0;
   for (int f = 0; f < o.frames; ++f) {
@@ -503,23 +730,35 @@ int main(int argc, char** argv) {
 
   // Table (stdout and markdown).
   std::ostringstream table;
-  table << "| P | scheduler | frames/s | speed-up | % of ideal | utilization | imbalance | steals (failed) | lock waits | audit |\n"
-        << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
-  table << "| 1 | serial loop (T1) | " << fixed(1000.0 * o.frames / t1_ms, 2) << " | 1.00 | 100.0 | - | - | - | - | - |\n";
+  // Existing columns first, in their old order; the added ones (cpu, off-cpu, the two comparisons) after
+  // lock waits, audit last.
+  table << "| P | scheduler | frames/s | speed-up | % of ideal | utilization | imbalance | steals (failed) | lock waits "
+           "| cpu | off-cpu | T_P/T1 [95% CI] | vs serial | T_P/T_queue [95% CI] | vs queue-mutex | audit |\n"
+        << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---|\n";
+  table << "| 1 | serial loop (T1) | " << fixed(1000.0 * o.frames / t1_ms, 2)
+        << " | 1.00 | 100.0 | - | - | - | - | - | - | reference | - | - | - | - |\n";
   for (const Row& r : rows) {
     const Cell& c = *r.cell;
     const std::uint64_t failed = c.totals.steal_attempts - c.totals.steals_succeeded;
     table << "| " << c.workers << " | " << c.scheduler << " | " << fixed(r.fps, 2) << " | " << fixed(r.speedup, 2)
           << " | " << fixed(r.ideal_pct, 1) << " | " << fixed(r.utilization, 1) << "% | " << fixed(r.imbalance_mean, 3)
           << " | " << c.totals.steals_succeeded << " (" << failed << ") | " << c.totals.lock_waits << " | "
+          << fixed(r.cpu_pct, 1) << "% | " << fixed(r.off_cpu_pct, 1) << "% | " << r.vs_serial.interval_text() << " | "
+          << r.vs_serial.verdict_text() << " | "
+          << (r.vs_queue ? r.vs_queue->interval_text() : "-") << " | "
+          << (r.vs_queue ? r.vs_queue->verdict_text() : (c.scheduler == "queue-mutex" ? "reference" : "-")) << " | "
           << (c.failed() ? "FAILED" : "ok") << " |\n";
   }
   std::cout << "\nfrontsteal: " << o.scene << ", " << n << " surfaces, " << o.frames << " frames x " << o.repeats
             << " repeats (medians), tolerance " << o.tolerance << " px, " << o.width << "x" << o.height << "\n"
             << "machine: " << machine << " (measured, not simulated)\n"
             << "ideal = T1 / min(P, " << cores << "); utilization = busy / (wall x P), summed over every frame; "
-            << "imbalance = max/mean busy per frame, averaged\n\n"
-            << table.str() << '\n' << tessellation_audit.str() << '\n';
+            << "imbalance = max/mean busy per frame, averaged; cpu, off-cpu = workers' thread CPU time and time "
+            << "in the frame without a CPU, over wall x P\n"
+            << "repeats: " << o.repeats << " (" << repeats_note << "); T_P/T_ref = median of per-repeat ratios, "
+            << "95 % bootstrap interval; verdict at 95 %, effect = change in path time\n\n"
+            << table.str() << '\n' << tessellation_audit.str() << '\n' << spread_line.str() << '\n'
+            << noise_line.str() << '\n';
 
   {
     std::ofstream md(dir / "frontsteal.md");
@@ -527,22 +766,41 @@ int main(int argc, char** argv) {
        << "Scene `" << o.scene << "` (" << n << " surfaces), " << o.frames << " frames along the camera path (orbit, "
        << "then zoom), " << o.repeats << " interleaved repeats (medians), tolerance " << o.tolerance << " px, "
        << o.width << "x" << o.height << ". Machine: " << machine << ". Commit " << FRONTSTEAL_GIT_COMMIT << ".\n\n"
-       << table.str() << '\n' << tessellation_audit.str() << ".\n";
+       << "Verdicts: median of the per-repeat ratios T_P[r] / T_ref[r] with its 95 % bootstrap interval; ahead / "
+       << "behind when the interval lies below / above 1; effect = change in path time. cpu and off-cpu: the "
+       << "workers' thread CPU time and their time in the frame without a CPU, over wall x P.\n\n"
+       << table.str() << '\n' << tessellation_audit.str() << ".\n\n" << spread_line.str() << ".\n\n"
+       << noise_line.str() << ".\n";
+    if (unreliable > 0) md << "\n**" << warning.str().substr(0, warning.str().find('\n')) << "**\n\n```\n" << warning.str() << "```\n";
   }
   {
     std::ofstream csv(dir / "frontsteal.csv");
     csv << "workers,scheduler,path_ms,frames_per_s,speedup,ideal_pct,utilization_pct,imbalance_mean,imbalance_max,"
            "steals,steal_attempts,lock_waits,lock_wait_ms,setup_ms,audit_failures,triangle_mismatches,"
-           "tessellation_inconsistencies\n";
+           "tessellation_inconsistencies,cpu_pct,off_cpu_pct,path_spread_pct,ratio_vs_serial,ratio_vs_serial_ci_low,"
+           "ratio_vs_serial_ci_high,verdict_vs_serial,effect_vs_serial_pct,ratio_vs_queue,ratio_vs_queue_ci_low,"
+           "ratio_vs_queue_ci_high,verdict_vs_queue,effect_vs_queue_pct,reliable\n";
     csv << "1,serial," << t1_ms << ',' << 1000.0 * o.frames / t1_ms << ",1,100,,,,,,,,,0,0," << serial_inconsistencies
-        << "\n";
+        << ",,," << 100 * serial_spread << ",,,,,,,,,,," << (noise_warnings.empty() ? "true" : "false") << "\n";
     for (const Row& r : rows) {
       const Cell& c = *r.cell;
       csv << c.workers << ',' << c.scheduler << ',' << r.path_ms << ',' << r.fps << ',' << r.speedup << ','
           << r.ideal_pct << ',' << r.utilization << ',' << r.imbalance_mean << ',' << c.imbalance_max << ','
           << c.totals.steals_succeeded << ',' << c.totals.steal_attempts << ',' << c.totals.lock_waits << ','
           << c.totals.lock_wait_ns / 1e6 << ',' << c.setup_ms << ',' << c.audit_failures << ','
-          << c.triangle_mismatches << ',' << c.tessellation_inconsistencies << '\n';
+          << c.triangle_mismatches << ',' << c.tessellation_inconsistencies << ',' << r.cpu_pct << ','
+          << r.off_cpu_pct << ',' << r.spread_pct << ',' << r.vs_serial.c.ratio.median << ','
+          << r.vs_serial.c.ratio.low << ',' << r.vs_serial.c.ratio.high << ",\""
+          << (r.vs_serial.reliable ? st::to_string(r.vs_serial.c.verdict) : "unreliable") << "\","
+          << r.vs_serial.c.effect_pct << ',';
+      if (r.vs_queue) {
+        csv << r.vs_queue->c.ratio.median << ',' << r.vs_queue->c.ratio.low << ',' << r.vs_queue->c.ratio.high << ",\""
+            << (r.vs_queue->reliable ? st::to_string(r.vs_queue->c.verdict) : "unreliable") << "\","
+            << r.vs_queue->c.effect_pct << ',';
+      } else {
+        csv << ",,,,,";
+      }
+      csv << ((r.vs_serial.reliable && (!r.vs_queue || r.vs_queue->reliable)) ? "true" : "false") << '\n';
     }
   }
   {
@@ -552,7 +810,18 @@ int main(int argc, char** argv) {
        << FRONTSTEAL_GIT_COMMIT << "\",\n  \"scene\": \"" << json_escape(o.scene) << "\",\n  \"surfaces\": " << n
        << ",\n  \"frames\": " << o.frames << ",\n  \"repeats\": " << o.repeats << ",\n  \"tolerance_px\": "
        << o.tolerance << ",\n  \"image\": [" << o.width << ", " << o.height << "],\n  \"hardware_threads\": " << cores
-       << ",\n  \"serial\": {\"path_ms\": " << t1_ms << ", \"triangles_per_frame\": [";
+       << ",\n  \"repeats_note\": \"" << json_escape(repeats_note) << "\",\n  \"pinned\": " << (o.pin ? "true" : "false")
+       << ",\n  \"noise\": {\"before\": " << usage_json(before_usage, o.noise) << ",\n            \"during\": "
+       << usage_json(during_usage, o.noise) << ",\n            \"after\": " << usage_json(after_usage, o.noise)
+       << ",\n            \"load1_before\": " << at_start.load1 << ", \"load1_after\": " << at_end.load1
+       << ", \"serial_spread_pct\": " << 100 * serial_spread << ", \"busy_threshold_pct\": "
+       << 100 * o.noise.other_share << ", \"spread_threshold_pct\": " << 100 * o.noise.spread
+       << ", \"verdicts\": " << verdicts << ", \"unreliable_verdicts\": " << unreliable << ", \"warnings\": [";
+    for (std::size_t i = 0; i < noise_warnings.size(); ++i) js << (i ? ", " : "") << '"' << json_escape(noise_warnings[i]) << '"';
+    js << "]}"
+       << ",\n  \"serial\": {\"path_ms\": " << t1_ms << ", \"path_ms_per_repeat\": [";
+    for (std::size_t k = 0; k < serial_path_ms.size(); ++k) js << (k ? ", " : "") << serial_path_ms[k];
+    js << "], \"triangles_per_frame\": [";
     for (std::size_t f = 0; f < wl.serial_triangles.size(); ++f) js << (f ? ", " : "") << wl.serial_triangles[f];
     js << "], \"inconsistent_surfaces_per_frame\": [";
     for (std::size_t f = 0; f < wl.serial_inconsistencies.size(); ++f) js << (f ? ", " : "") << wl.serial_inconsistencies[f];
@@ -576,7 +845,16 @@ int main(int argc, char** argv) {
          << ", \"lock_waits\": " << c.totals.lock_waits << ", \"lock_wait_ms\": " << c.totals.lock_wait_ns / 1e6
          << ", \"setup_ms\": " << c.setup_ms << ", \"audit_failures\": " << c.audit_failures
          << ", \"triangle_mismatches\": " << c.triangle_mismatches << ", \"tessellation_inconsistencies\": "
-         << c.tessellation_inconsistencies << ", \"path_ms_per_repeat\": [";
+         << c.tessellation_inconsistencies << ", \"cpu_pct\": " << r.cpu_pct << ", \"off_cpu_pct\": " << r.off_cpu_pct
+         << ", \"path_spread_pct\": " << r.spread_pct << ", \"vs_serial\": " << r.vs_serial.json()
+         << ", \"vs_queue_mutex\": " << (r.vs_queue ? r.vs_queue->json() : std::string("null"))
+         << ", \"noise\": " << usage_json(c.usage, o.noise) << ", \"per_worker\": [";
+      for (std::size_t w = 0; w < c.per_worker.size(); ++w) {
+        const fs::WorkerFrameStats& ws = c.per_worker[w];
+        js << (w ? ", " : "") << "{\"items\": " << ws.items_processed << ", \"busy_ms\": " << ws.busy_ns / 1e6
+           << ", \"cpu_ms\": " << ws.cpu_ns / 1e6 << ", \"active_ms\": " << ws.active_ns / 1e6 << "}";
+      }
+      js << "], \"path_ms_per_repeat\": [";
       for (std::size_t k = 0; k < c.path_ms.size(); ++k) js << (k ? ", " : "") << c.path_ms[k];
       js << "], \"frame_ms_median\": [";
       for (int f = 0; f < o.frames; ++f) {
@@ -653,6 +931,12 @@ int main(int argc, char** argv) {
   std::cout << "\nwrote " << (dir / "frontsteal.json").string() << ", .csv, .md"
             << (o.plot ? ", frontsteal-speedup.png, frontsteal-frames.png" : "") << " (" << fixed(progress.seconds(), 0)
             << " s)\n";
+  if (unreliable > 0) {
+    // Last, on stdout and stderr, so it is the thing one sees.
+    std::cout << '\n' << warning.str();
+    std::cerr << kProgram << ": WARNING: noisy machine: " << unreliable << " of " << verdicts
+              << " verdicts unreliable (reasons on stdout and in frontsteal.md)\n";
+  }
 
   if (problems) {
     std::cerr << kProgram << ": AUDIT FAILED:\n";
