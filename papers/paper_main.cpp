@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/cli_args.hpp"
+#include "core/paired_comparison.hpp"
 #include "papers/calibration.hpp"
 #include "papers/cost_trace.hpp"
 #include "papers/paper_numbers.hpp"
@@ -459,7 +460,30 @@ struct SceneCurves {
   std::vector<std::array<double, kModels>> meas_fps;             // [P index][model]
   std::vector<std::array<double, kModels>> sim_at_meas_fps;      // simulated at the measured P
   std::vector<std::array<double, kModels>> meas_busy_ms;         // Σ busy per path run, measured
+  std::vector<std::array<std::vector<double>, kModels>> meas_path_ms;  // [P index][model]: per repeat
 };
+
+// The two comparisons the paper's text makes, measured repeat by repeat (core/paired_comparison.hpp): the
+// global queue against static, and load stealing against the global queue; ratios of path times.
+constexpr std::size_t kQueueModel = 1, kStaticModel = 0, kStealingModel = 2;
+frontsteal::stats::Comparison fig8_comparison(const SceneCurves& c, std::size_t i, std::size_t candidate,
+                                              std::size_t reference) {
+  return frontsteal::stats::compare_paired(c.meas_path_ms[i][candidate], c.meas_path_ms[i][reference]);
+}
+std::string comparison_cell(const frontsteal::stats::Comparison& k) {
+  std::string v = frontsteal::stats::to_string(k.verdict);
+  if (k.verdict != frontsteal::stats::Verdict::kTooFewRepeats) {
+    v += std::string(" ") + (k.effect_pct >= 0 ? "+" : "") + fixed(k.effect_pct, 1) + " %";
+  }
+  return fixed(k.ratio.median, 3) + " [" + fixed(k.ratio.low, 3) + ", " + fixed(k.ratio.high, 3) + "] " + v;
+}
+std::string comparison_json(const frontsteal::stats::Comparison& k) {
+  std::ostringstream j;
+  j << "{\"ratio_median\": " << k.ratio.median << ", \"ci95_low\": " << k.ratio.low << ", \"ci95_high\": "
+    << k.ratio.high << ", \"pairs\": " << k.pairs << ", \"effect_pct\": " << k.effect_pct << ", \"verdict\": \""
+    << frontsteal::stats::to_string(k.verdict) << "\"}";
+  return j.str();
+}
 
 SceneCurves curves_for_trace(const fp::CostTrace& t, const fp::Overheads& ov, const Options& o, const Reporter& rep) {
   SceneCurves c;
@@ -511,6 +535,15 @@ std::string fig8_markdown(const std::vector<SceneCurves>& all, const Options& o,
       for (const auto& r : c.sim[i]) md << ' ' << fixed(r.frames_per_s, 2) << " |";
       md << ' ' << pct_change(c.sim[i][1].frames_per_s / c.sim[i][0].frames_per_s) << " | "
          << pct_change(c.sim[i][2].frames_per_s / c.sim[i][1].frames_per_s) << " |\n";
+    }
+    md << "\nMeasured, repeat by repeat (path-time ratio, median of the " << o.repeats
+       << " per-repeat ratios [95 % bootstrap interval], verdict at 95 %, effect = change in path time; with 5 "
+          "or fewer repeats the interval runs from the smallest to the largest ratio, so a verdict needs every pair "
+          "to agree: --repeats 10 sharpens it):\n\n"
+       << "| P | global queue / static | load stealing / global queue |\n|---:|---|---|\n";
+    for (std::size_t i = 0; i < c.meas_ps.size(); ++i) {
+      md << "| " << c.meas_ps[i] << " | " << comparison_cell(fig8_comparison(c, i, kQueueModel, kStaticModel)) << " | "
+         << comparison_cell(fig8_comparison(c, i, kStealingModel, kQueueModel)) << " |\n";
     }
     md << "\nSimulated speed-up at P = " << c.sim_ps.back() << " (over the serial trace): ";
     for (std::size_t m = 0; m < kModels; ++m) {
@@ -603,7 +636,14 @@ void write_fig8(const std::vector<SceneCurves>& all, const Options& o, const fp:
     for (std::size_t i = 0; i < c.meas_ps.size(); ++i) {
       js << (i ? ", " : "") << "{\"workers\": " << c.meas_ps[i] << ", \"fps\": [";
       for (std::size_t m = 0; m < kModels; ++m) js << (m ? ", " : "") << c.meas_fps[i][m];
-      js << "]}";
+      js << "], \"path_ms_per_repeat\": [";
+      for (std::size_t m = 0; m < kModels; ++m) {
+        js << (m ? ", " : "") << '[';
+        for (std::size_t k = 0; k < c.meas_path_ms[i][m].size(); ++k) js << (k ? ", " : "") << c.meas_path_ms[i][m][k];
+        js << ']';
+      }
+      js << "], \"queue_vs_static\": " << comparison_json(fig8_comparison(c, i, kQueueModel, kStaticModel))
+         << ", \"stealing_vs_queue\": " << comparison_json(fig8_comparison(c, i, kStealingModel, kQueueModel)) << "}";
     }
     js << "]}" << (s + 1 < all.size() ? "," : "") << '\n';
     gp << "set title '" << c.scene << " (" << c.surfaces << " surfaces)'\nset ylabel 'frames per second'\n"
@@ -659,11 +699,13 @@ int run_fig8(const Options& o, const fp::Overheads& ov, const Reporter& rep) {
     SceneCurves c = curves_for_trace(t, ov, o, rep);
     for (WorkerId p : mo.threads) {
       std::array<double, kModels> fps{}, sim{}, busy{};
+      std::array<std::vector<double>, kModels> paths;
       for (std::size_t m = 0; m < kModels; ++m) {
         for (const auto& r : meas) {
           if (r.workers == p && r.scheduler == kFig8Models[m].scheduler) {
             fps[m] = r.frames_per_s;
             busy[m] = r.busy_ms_per_path;
+            paths[m] = r.path_ms;
           }
         }
         sim[m] = simulate_model(t, ov, kFig8Models[m].model, p, o.seed).frames_per_s;
@@ -672,6 +714,7 @@ int run_fig8(const Options& o, const fp::Overheads& ov, const Reporter& rep) {
       c.meas_fps.push_back(fps);
       c.sim_at_meas_fps.push_back(sim);
       c.meas_busy_ms.push_back(busy);
+      c.meas_path_ms.push_back(paths);
     }
     all.push_back(std::move(c));
   }

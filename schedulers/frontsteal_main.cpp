@@ -90,7 +90,8 @@ options:
                     bootstrap intervals are reported. auto: 10 when the warm-up pass predicts they fit in
                     --budget, else as many as fit, at least 5                          (default auto)
   --budget S        seconds the measured repeats may take under --repeats auto         (default 180)
-  --pin             pin worker w (and the serial loop, as worker 0) to the w-th allowed CPU (off by default)
+  --pin             pin worker w (and the serial loop, as worker 0) to the w-th allowed CPU (off by default;
+                    the "spread of the repeats" line says whether it narrows them)
   --noise-busy PCT  share of the machine other processes (or steal) may take before a run is unreliable
                     (default 10)
   --noise-spread PCT  spread max/min - 1 of the serial loop's repeats above which a run is unreliable
