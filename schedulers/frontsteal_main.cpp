@@ -88,7 +88,8 @@ options:
   --frames F        frames along the path, half orbit and half zoom                  (default 24)
   --repeats R|auto  interleaved runs of the path per scheduler and P; medians, paired ratios and their
                     bootstrap intervals are reported. auto: 10 when the warm-up pass predicts they fit in
-                    --budget, else as many as fit, at least 5                          (default auto)
+                    --budget, else as many as fit, at least 5; rounds stop early (not below 5) once
+                    the budget is spent                                                 (default auto)
   --budget S        seconds the measured repeats may take under --repeats auto         (default 180)
   --pin             pin worker w (and the serial loop, as worker 0) to the w-th allowed CPU (off by default;
                     the "spread of the repeats" line says whether it narrows them)
@@ -439,7 +440,8 @@ int main(int argc, char** argv) {
   // the budget (the bootstrap interval of a median is informative from about ten pairs), else as many as
   // fit, but never fewer than 5, the count earlier results were measured with.
   std::string repeats_note = "set by --repeats";
-  if (o.repeats == 0) {
+  const bool auto_repeats = o.repeats == 0;
+  if (auto_repeats) {
     double round_s = warm_s;
     for (fs::WorkerId p : o.threads) {
       round_s += o.schedulers.size() * (warm_s / std::min<double>(p, cores) + 0.005);
@@ -568,8 +570,19 @@ int main(int argc, char** argv) {
     unpin_caller();
   }
   const nz::ProcSample measure_start = nz::sample_now();
+  const auto rounds_start = std::chrono::steady_clock::now();
 
   for (int r = 0; r < o.repeats; ++r) {
+    // --repeats auto was chosen from a warm-up on the machine as it was then; when others load it later, the
+    // rounds slow down. Whole rounds only (every series keeps its pairs), never fewer than 5, and stop once
+    // the budget is spent, so the default run stays bounded on a shared machine.
+    if (auto_repeats && r >= 5 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - rounds_start).count() > o.budget_s) {
+      repeats_note += "; stopped after " + std::to_string(r) + " of " + std::to_string(o.repeats) +
+                      " rounds: the budget was spent";
+      o.repeats = r;
+      break;
+    }
     run_serial_path();
     progress.step("repeat " + std::to_string(r + 1) + "/" + std::to_string(o.repeats) + " serial loop: " +
                   fixed(serial_path_ms.back(), 0) + " ms for the path");
