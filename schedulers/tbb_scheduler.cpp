@@ -39,13 +39,17 @@ class TbbAffinityScheduler final : public Scheduler {
             const auto w = static_cast<WorkerId>(slot);
             // oneTBB's threads enter and leave the arena as they please, so there is no per-frame span to
             // time: CPU time is read around each claimed range instead (affinity_partitioner claims a few
-            // ranges per thread and frame, so the system-call clock costs little), and active_ns is the
-            // claims' wall time. Here active − cpu is the time descheduled while holding work.
-            const Clock::time_point start = Clock::now();
+            // dozen ranges per thread and frame on a quiet machine, so the system-call clock costs little),
+            // and active_ns is the claims' busy time itself, so active − cpu is the time descheduled while
+            // holding work. Not a separate wall clock around the CPU-clock reads: on a loaded machine the
+            // partitioner splits into many more ranges, and a preemption landing at a system call's return
+            // would then count as "active" outside every claim.
+            WorkerFrameStats& stats = slots_[w].stats;
+            const std::int64_t busy_before = stats.busy_ns;
             const std::int64_t cpu_start = thread_cpu_ns();
             slots_[w].run_range(process, r.begin(), r.end(), w, timed_);
-            slots_[w].stats.cpu_ns += thread_cpu_ns() - cpu_start;
-            slots_[w].stats.active_ns += nanoseconds_since(start);
+            stats.cpu_ns += thread_cpu_ns() - cpu_start;
+            stats.active_ns += stats.busy_ns - busy_before;
           },
           partitioner_);
     });
