@@ -60,7 +60,7 @@ TEST_CASE("fewer than three pairs give no verdict", "[stats]") {
   CHECK(st::compare_paired({}, {}).pairs == 0);
 }
 
-TEST_CASE("the same data and seed give the same interval; the interval is ordered", "[stats]") {
+TEST_CASE("the same data and seed give the same interval, and the interval is ordered", "[stats]") {
   const std::vector<double> x = {1.02, 0.97, 1.10, 0.99, 1.05, 0.93, 1.01};
   const st::Interval a = st::bootstrap_median_ci(x);
   const st::Interval b = st::bootstrap_median_ci(x);

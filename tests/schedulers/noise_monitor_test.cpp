@@ -63,7 +63,7 @@ TEST_CASE("positive control: another process on half the machine is flagged, and
   CHECK_THAT(stolen.reason, Catch::Contains("stole 10.0 %"));
 }
 
-TEST_CASE("short windows add up; one stray tick in a short window is not 'busy'", "[noise]") {
+TEST_CASE("short windows add up, and one stray tick in a short window is not 'busy'", "[noise]") {
   // A 20 ms window holds 4 ticks on 2 cores: one tick of someone else is 25 %, but only one tick.
   const nz::ProcSample a = sample(100, 10, 1000, 0, 50, 0, 1.00);
   const nz::ProcSample b = sample(103, 10, 1000, 0, 52, 0, 1.02);

@@ -112,7 +112,7 @@ TEST_CASE("oversubscribed schedulers really run P threads", "[schedulers]") {
   }
 }
 
-TEST_CASE("every scheduler reports CPU time beside busy time; a worker off its CPU shows", "[schedulers]") {
+TEST_CASE("every scheduler reports CPU time beside busy time, and a worker off its CPU shows", "[schedulers]") {
   // Spinning items: the workers' spans are on a CPU, so cpu ≈ active (never above it, bar clock skew).
   // Sleeping items: busy wall time goes on, CPU time does not: active − cpu is most of the span. This is what
   // tells "descheduled" (or blocked) apart from "idle for lack of work" in the main job.
