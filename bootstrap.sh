@@ -13,6 +13,8 @@ packages=(
   catch2 libbenchmark-dev
   # model checking (models_check/): Relacy, header-only
   relacy-dev
+  # model checking (models_check/spin/): SPIN, the second engine (pan is compiled with gcc at test time)
+  spin
   # ThreadSanitizer runtime for g++ 12 (stress/)
   libtsan2
   # vector and matrix math for the tessellation workload (tessellate/)

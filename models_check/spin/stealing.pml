@@ -4,7 +4,7 @@
  * core/stealing_protocol.hpp (owner claim O1-O4, steal T1-T5, install I1-I2), core/try_lock.hpp (L1-L3),
  * core/active_workers.hpp (A1-A3) and core/frame_loop.hpp (E1-E6). Every labelled step below carries the
  * label of core/site.hpp as the first argument of its access (ld/st/sp/xchg/rmw/fence/await: O1, F1, ...);
- * tests/spin/check_labels.cmake fails when the set of labels used here differs from the stealing sites of
+ * models_check/spin/check_labels.cmake fails when the set of labels used here differs from the stealing sites of
  * core/site.hpp. x86-TSO as explicit per-thread FIFO store buffers (Sewell et al., "x86-TSO", CACM 2010;
  * the store-buffer encoding used for SPIN by e.g. Travkin, Mütze & Wehrheim, "SPIN as a linearizability
  * checker under weak memory models", HVC 2013): a store appends to its thread's buffer; a load reads the
@@ -28,6 +28,7 @@
  *   EXACT    1: assert exactly-once (each item run once per frame, checked at every run and at frame end);
  *            0: assert at-least-once only (no item of a frame run zero times)
  *   BOUND_RUNS  1: also assert that no item runs more than twice in a frame
+ *   STEAL_BOUND  n > 0: a worker steals at most n times per frame (only for the termination property, see term)
  *   BROKEN_SKIP_REREAD  negative control: the thief keeps its whole share without T4/T5 (Defect::kSkipFrontReread)
  *   WAITFREE 1: the owner-isolation check (see PROPERTIES)
  *   LIVENESS 1: compile the LTL properties (select one with pan -N name)
@@ -60,7 +61,11 @@
  * PROPERTIES
  *   safety   assertions: exactly-once (EXACT=1) or at-least-once; End never increases between installs (I2);
  *            active never underflows; no invalid end state (every worker finishes both frames).
- *   term     LTL: every frame terminates  -> pan -a -f -N term  (weak fairness)
+ *   term     LTL: every frame terminates  -> pan -a -f -N term  (weak fairness). FALSE as core is written: a
+ *            lone unclaimed item can be stolen back and forth forever (items_left_to_victim(1) = 0, so a
+ *            thief takes a one-item list whole, and the new owner may lose it again before its first claim);
+ *            every step of that cycle is fair. With STEAL_BOUND (each worker steals at most n times per
+ *            frame) the livelock is cut and term holds.
  *   starve   LTL: a thief waiting at T4 eventually stops waiting -> pan -a -N starve finds the paper's
  *            starvation (the owner preempted inside a claim) without fairness; holds with -f
  *   WAITFREE at any step of any claim, the scheduler may freeze every other worker and the caller (Promela
@@ -96,6 +101,9 @@
 #endif
 #ifndef BOUND_RUNS
 #define BOUND_RUNS 0
+#endif
+#ifndef STEAL_BOUND
+#define STEAL_BOUND 0
 #endif
 #ifndef WAITFREE
 #define WAITFREE 0
@@ -290,6 +298,11 @@ inline positions(m, lo, hi, out) {
 }
 
 /* Thief: L1, L2, T1, T2 and the copy of the list body, as one step (see find_work). */
+#if STEAL_BOUND
+#define BOUND_OK (ns < STEAL_BOUND)
+#else
+#define BOUND_OK true
+#endif
 #define CAN_STEAL(t, v) (LV(t, LOCK(v)) == 0 && EMPTY(t) && LV(t, FRONT(v)) < LV(t, END(v)))
 inline take_and_plan(t, v) {
   mem[LOCK(v)] = 1;
@@ -325,13 +338,14 @@ inline install(t, w, list) {
 /* ---------------------------------------------------------------------------------------------------------
  * A worker: frame_loop.hpp's await_frame_start, run_frame (drain, A2, find_work) and arrive.
  * ------------------------------------------------------------------------------------------------------- */
-proctype Worker(byte me) provided (RUNS_NOW(me)) {
+proctype Worker(byte me) provided (RUNS_NOW(_pid - 1)) { /* pids: init 0, workers 1..P, caller P+1, flushers */
   byte k = 1;     /* frame */
   byte f;         /* Owner::front_ (private copy of Front[me]) */
-  byte e, x, i, j, q, item, v, fr, mid, tend, vb, fa, share, steps;
+  byte e, x, i, j, q, item, v, fr, mid, tend, vb, fa, share, steps, ns;
 
 frame_start:
   f = 0; /* the arriver's install reset Owner::front_ */
+  ns = 0;
   AWAIT(E6, me, DONE, >= k - 1);
   AWAIT(E2, me, STARTED, >= k);
   logm[me] = 0;
@@ -425,12 +439,12 @@ claim_loop:
 find_work:
   do
   :: d_step { /* steal from me+1 */
-       (CAN_STEAL(me, (me + 1) % P));
+       (BOUND_OK && CAN_STEAL(me, (me + 1) % P));
        v = (me + 1) % P;
        take_and_plan(me, v)
      } -> break
   :: d_step { /* steal from me+2 (P = 3) */
-       (P > 2 && CAN_STEAL(me, (me + 2) % P));
+       (P > 2 && BOUND_OK && CAN_STEAL(me, (me + 2) % P));
        v = (me + 2) % P;
        take_and_plan(me, v)
      } -> break
@@ -484,6 +498,9 @@ T4_wait:
   :: else -> /* kStolen: install the share into our own slot, then drain it */
      install(me, me, share);
      share = 0; f = 0;
+#if STEAL_BOUND
+     ns++;
+#endif
      goto claim_loop
   fi;
 
@@ -556,7 +573,7 @@ proctype Caller() provided (RUNS_NOW(CALLER)) {
 
 #if TSO
 /* The store buffer's drain: the oldest entry of thread t's buffer reaches memory, at any time. */
-proctype Flusher(byte t) provided (RUNS_NOW(t)) {
+proctype Flusher(byte t) provided (RUNS_NOW(_pid - P - 2)) {
 end_flush:
   do
   :: d_step {
