@@ -47,8 +47,15 @@
  *     fields are locals/ghost globals. The frame fields that change hands between frames (log, next list) are
  *     ghost globals written directly: their hand-over ordering (E3/E5/E2) is checked by Relacy's `handover`
  *     cell, not here.
- *   - Victim order: worker w tries w+1, w+2, ... (mod P) starting at a rotating cursor as find_work does; core
- *     shuffles the order with a seed, which only renames workers.
+ *   - find_work's polling: core's idle worker tries its victims in rounds (try_lock, T1, T2) and reads `active`
+ *     (A3) after each round. A failed attempt (kLockBusy, kEmpty) changes no shared cell, so the model lets an
+ *     idle worker wait until it can take some victim's free LockList and see Front < End there, or until A3
+ *     reads 0; it may pick any victim (a superset of core's seeded order). Failed attempts are not modelled.
+ *   - Merged steps (Lipton reduction): L1+L2+T1+T2+copy of the body are one step (the lock acquisition is a
+ *     right mover; End and the body cannot change while LockList is held); T5's L3 joins the keep_unclaimed
+ *     computation (a release is a left mover); install (L1, L2, body, I1, I2, L3) is one step that writes the
+ *     protected cells to memory and buffers only L3 (nobody reads them before taking the lock, which L3's
+ *     flush, FIFO-last, gives back). Under SC, F1 and F2 are no-ops.
  *   - The last frame's arriver does not install lists for a frame that never runs.
  *   - Buffers hold at most D = 2 stores; a store to a full buffer waits for a flush. This under-approximates
  *     TSO (deeper buffers admit more reorderings); depth 2 is what the two-store handshake needs.

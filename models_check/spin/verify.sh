@@ -9,7 +9,8 @@
 #     EXPECT   pass              "errors: 0" and a complete search ("max search depth too small" absent)
 #              fail              at least one error (a counterexample trail is written)
 #   Prints one line: verdict, states stored, memory, time. Exits 0 when the result is the expected one.
-#   Environment: PAN_DEPTH (default 3000000), PAN_MEMLIM in MB (default 4000), SPIN (default spin), CC (gcc).
+#   Environment: PAN_DEPTH (default 3000000), PAN_MEMLIM in MB (default 4000), SPIN (default spin), CC (gcc),
+#   PAN_EXTRA (more pan options, e.g. -i for the shortest counterexample).
 set -eu
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -48,7 +49,7 @@ esac
 
 # pan exits non-zero on some errors; the verdict is read from its report.
 # shellcheck disable=SC2086
-./pan $pan_args >out.txt 2>&1 || true
+./pan $pan_args ${PAN_EXTRA:-} >out.txt 2>&1 || true
 
 errors=$(sed -n 's/.*errors: \([0-9]*\).*/\1/p' out.txt | tail -1)
 states=$(sed -n 's/^ *\([0-9.e+]*\) states, stored.*/\1/p' out.txt | tail -1)
