@@ -57,7 +57,9 @@ done
 for policy in SEQCST FENCED MINIMAL ASYM; do
   proof "exactly_once.tso1.$policy.p3n2f1" safety pass -DP=3 -DN=2 -DFRAMES=1 -DTSO=1 -DPOLICY=$policy
 done
-proof "at_least_once.tso1.PAPER.p3n2f1" safety pass -DP=3 -DN=2 -DFRAMES=1 -DTSO=1 -DPOLICY=PAPER -DEXACT=0
+# Known not to finish within the 4 GB bound (Paper's items can run again and again, so its state space is far
+# larger): recorded as incomplete, which is NOT a proof.
+proof "at_least_once.tso1.PAPER.p3n2f1" safety incomplete -DP=3 -DN=2 -DFRAMES=1 -DTSO=1 -DPOLICY=PAPER -DEXACT=0
 proof "term.livelock.tso0" fair:term fail -DP=2 -DN=2 -DPOLICY=FENCED
 proof "term.bounded_steals.tso0.p2n4" fair:term pass -DP=2 -DN=4 -DPOLICY=FENCED -DSTEAL_BOUND=2
 proof "term.bounded_steals.tso1.p2n4" fair:term pass -DP=2 -DN=4 -DTSO=1 -DPOLICY=FENCED -DSTEAL_BOUND=2
@@ -80,6 +82,8 @@ commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
   echo "\`fair:X\` / \`acceptance:X\` = LTL property X with / without weak fairness (-a [-f], -DNOREDUCE)."
   echo "\"pass\" means errors: 0 and no depth or memory truncation. P workers, N items, 2 frames unless -DFRAMES=1."
   echo "TSO1 = x86-TSO with per-thread FIFO store buffers of depth 2; TSO0 = sequential consistency."
+  echo "\"incomplete\" = the search hit the memory bound (PAN_MEMLIM, 4000 MB): no verdict, not a proof."
+  echo "What the model abstracts, and what it does not check: the header of models_check/spin/stealing.pml."
   echo
   echo "| run | kind | defines | expected | verdict | as expected | states stored | memory (MB) | time (s) |"
   echo "|-----|------|---------|----------|---------|:-----------:|--------------:|------------:|---------:|"
