@@ -46,34 +46,44 @@ matrix and the certificate of the Minimal policy. Writes markdown and JSON resul
 that differs from the expected-verdict table (models_check/expected_verdicts.hpp).
 
 options:
-  --tier fast|slow       fast: 1e5 random iterations per search, context bounds 1 and 2, 2e4 per mutant
-                         slow: 1e6 random iterations, context bounds 1 and 2, 1e5 per mutant  (default fast)
+  --tier fast|slow       fast: 1e5 random iterations, complete context bound 1, bound 2 for 2-thread scenarios,
+                         2e4 random iterations per mutant then its complete bound-1 search
+                         slow: 1e6 random iterations, bounds 1 and 2, bound 3 for 2-thread scenarios, 1e5
+                         per mutant                                                           (default fast)
   --policy LIST          comma-separated: SeqCst,Paper,Fenced,Asymmetric,Minimal,Broken:SkipsReread,
                          Broken:NoTransient, or all                                           (default all)
   --scenario LIST        comma-separated scenario names, or all                               (default all)
-  --search LIST          comma-separated: random,bound1,bound2,bound3,full       (default random,bound1,bound2)
+  --search LIST          comma-separated: random,bound1,bound2,bound3,full; boundN:T only for scenarios of at
+                         most T threads                                     (default random,bound1,bound2:2)
   --iterations N         random-search iterations (overrides the tier)
-  --cap N                executions after which a context-bound or full search stops (overrides the tier:
-                         fast 1e5, slow 1e6); results say "capped" when a search stopped there
+  --cap N                safety cap: executions after which a context-bound or full search stops (overrides
+                         the tier: fast 1e7, slow 1e8); results say "capped" when a search stopped there
   --mutants POLICY       also run the kill matrix of every one-step weakening of POLICY
   --mutant-iterations N  random-search iterations per mutant and scenario (overrides the tier)
   --certify              also certify Minimal: every one-step weakening must be killed
   --derive-minimal BASE  greedily weaken BASE while every scenario passes; print the resulting table
   --no-verdicts          skip the policy x scenario verdict table
+  --spin-bound K         tree searches: failed iterations allowed per wait or idle round before the execution
+                         is discarded (0: unbounded, the searches then hit the cap)                (default 1)
   --depth N              Relacy execution_depth_limit                                        (default 20000)
   --out DIR              results directory                                      (default out/modelcheck)
   --quiet                no progress lines
   --help                 this text
 
-Bounds, stated honestly: Relacy keeps a few stores per atomic and never produces load buffering, and random
-and context-bound searches are not exhaustive. A pass is a bounded search, not a proof.
+Bounds, stated honestly: Relacy keeps a few stores per atomic and never produces load buffering. Context-bound
+searches run the finite program of the spin bound (each wait may fail --spin-bound times, frame waits once
+more; longer waits are discarded and counted) and are exhaustive within their bound unless "capped"; the
+random search runs the unbounded program. A pass is a bounded search, not a proof.
 )";
 
 struct Options {
   std::string tier = "fast";
   std::vector<std::string> policies;
   std::vector<std::string> scenarios;
-  std::vector<std::string> searches{"random", "bound1", "bound2"};
+  // Fast tier: every cell gets the complete bound-1 search and two-thread scenarios the complete bound-2
+  // search (three-thread scenarios take minutes each at bound 2: slow tier). "boundN:T" limits a search
+  // to scenarios with at most T threads.
+  std::vector<std::string> searches{"random", "bound1", "bound2:2"};
   std::optional<std::uint64_t> iterations;
   std::optional<std::uint64_t> mutant_iterations;
   std::optional<std::uint64_t> cap;
@@ -82,6 +92,7 @@ struct Options {
   std::string derive_base;
   bool verdicts = true;
   unsigned depth = 20000;
+  unsigned spin_bound = 1;
   std::string out = "out/modelcheck";
   bool quiet = false;
 };
@@ -110,6 +121,7 @@ Options parse(int argc, char** argv) {
   Options o;
   std::string policies = "all";
   std::string scenario_list = "all";
+  bool searches_given = false;
   cli::ArgReader args(argc, argv, kProgram, kUsage);
   while (args.next()) {
     const std::string_view a = args.flag();
@@ -123,6 +135,7 @@ Options parse(int argc, char** argv) {
       scenario_list = value();
     } else if (a == "--search") {
       o.searches = split_list(value());
+      searches_given = true;
     } else if (a == "--iterations") {
       o.iterations = parse_count(a, value());
     } else if (a == "--cap") {
@@ -137,6 +150,8 @@ Options parse(int argc, char** argv) {
       o.derive_base = value();
     } else if (a == "--no-verdicts") {
       o.verdicts = false;
+    } else if (a == "--spin-bound") {
+      o.spin_bound = cli::parse_number<unsigned>(kProgram, a, value(), 0, 16);
     } else if (a == "--depth") {
       o.depth = static_cast<unsigned>(parse_count(a, value()));
     } else if (a == "--out") {
@@ -154,9 +169,11 @@ Options parse(int argc, char** argv) {
   if (policies == "all") {
     for (const auto& p : known_policies()) o.policies.push_back(p.name);
   }
+  if (o.tier == "slow" && !searches_given) o.searches = {"random", "bound1", "bound2", "bound3:2"};
   for (const auto& s : o.searches) {
-    if (s != "random" && s != "bound1" && s != "bound2" && s != "bound3" && s != "full") {
-      usage_error("unknown search '" + s + "' (random, bound1, bound2, bound3, full)");
+    const std::string base = s.substr(0, s.find(':'));
+    if (base != "random" && base != "bound1" && base != "bound2" && base != "bound3" && base != "full") {
+      usage_error("unknown search '" + s + "' (random, bound1, bound2, bound3, full; boundN:T for at most T threads)");
     }
   }
   if (scenario_list != "all") {
@@ -176,14 +193,22 @@ Options parse(int argc, char** argv) {
 }
 
 std::uint64_t random_iterations(const Options& o) { return o.iterations.value_or(o.tier == "slow" ? 1000000 : 100000); }
-std::uint64_t execution_cap(const Options& o) { return o.cap.value_or(o.tier == "slow" ? 1000000 : 100000); }
+// A safety net only: with the spin bound every fast-tier search finishes far below it.
+std::uint64_t execution_cap(const Options& o) { return o.cap.value_or(o.tier == "slow" ? 100000000 : 10000000); }
 std::uint64_t mutant_iterations(const Options& o) {
   return o.mutant_iterations.value_or(o.tier == "slow" ? 100000 : 20000);
+}
+
+// "boundN:T" applies only to scenarios with at most T threads.
+bool applies(const std::string& search, const ScenarioSpec& scenario) {
+  const auto colon = search.find(':');
+  return colon == std::string::npos || scenario.threads() <= static_cast<unsigned>(std::stoul(search.substr(colon + 1)));
 }
 
 SearchConfig config_for(const std::string& search, std::uint64_t iterations, const Options& o) {
   SearchConfig c;
   c.depth_limit = o.depth;
+  c.spin_bound = o.spin_bound;
   c.execution_cap = execution_cap(o);
   c.iterations = iterations;
   if (search == "random") {
@@ -192,7 +217,7 @@ SearchConfig config_for(const std::string& search, std::uint64_t iterations, con
     c.kind = SearchKind::kFull;
   } else {
     c.kind = SearchKind::kContextBound;
-    c.bound = static_cast<unsigned>(search.back() - '0');
+    c.bound = static_cast<unsigned>(search[5] - '0');  // "boundN" or "boundN:T"
   }
   return c;
 }
@@ -217,6 +242,16 @@ std::string json_escape(std::string_view s) {
     }
     out += c;
   }
+  return out;
+}
+
+// "100000 it" for a random search; "N done + M discarded" for a tree search (with "capped" if it hit the cap,
+// "until failure" if it stopped at a failing execution).
+std::string search_summary(const SearchResult& r) {
+  if (r.spin_bound == 0) return std::to_string(r.iterations) + " it" + (r.capped ? " (capped)" : "");
+  std::string out = std::to_string(r.completed) + " done + " + std::to_string(r.discarded) + " discarded";
+  if (r.capped) out += " (capped)";
+  if (r.verdict != Verdict::kPass) out += " (stopped at execution " + std::to_string(r.iterations) + ")";
   return out;
 }
 
@@ -253,6 +288,7 @@ Cell check_cell(const PolicyTable& policy, const ScenarioSpec& scenario, CheckMo
   for (std::size_t i = 0; i < expect.accepted.size(); ++i) cell.expected += (i ? "|" : "") + std::string(name(expect.accepted[i]));
   current_table() = policy;
   for (const auto& search : o.searches) {
+    if (!applies(search, scenario)) continue;
     SearchConfig c = config_for(search, random_iterations(o), o);
     std::string file_name = "history-" + policy.name + "-" + std::string(scenario.name) + ".txt";
     std::replace(file_name.begin(), file_name.end(), ':', '_');
@@ -278,10 +314,13 @@ struct Kill {
   Verdict verdict = Verdict::kPass;
   std::uint64_t iterations = 0;
   std::string search;
+  bool capped = false;  // some search of this mutant stopped at the safety cap (its verdict is not complete)
+  std::uint64_t explored = 0;  // executions of every search run against the mutant
   double seconds = 0;
 };
 
-// Runs every scenario (random search, then context bound 1) against one mutant until one kills it.
+// Runs every scenario against one mutant until one kills it: the random search, then the complete bound-1
+// search (spin bound; only the safety cap). A survivor has passed every scenario's complete bound-1 search.
 Kill kill_mutant(const Mutant& m, const std::vector<const ScenarioSpec*>& scens, const Options& o) {
   Kill k;
   k.mutant = m;
@@ -289,14 +328,16 @@ Kill kill_mutant(const Mutant& m, const std::vector<const ScenarioSpec*>& scens,
   for (const char* search : {"random", "bound1"}) {
     for (const ScenarioSpec* s : scens) {
       SearchConfig c = config_for(search, mutant_iterations(o), o);
-      c.execution_cap = mutant_iterations(o);  // mutants: the bounded search gets the same budget as random
       const SearchResult r = run_scenario(*s, CheckMode::kExactlyOnce, c);
       k.seconds += r.seconds;
+      k.explored += r.iterations;
+      k.capped = k.capped || r.capped;
       if (r.verdict != Verdict::kPass) {
         k.killed = true;
         k.by_scenario = std::string(s->name);
         k.verdict = r.verdict;
         k.iterations = r.iterations;
+        k.capped = r.capped;
         k.search = search;
         return k;
       }
@@ -364,14 +405,20 @@ int main(int argc, char** argv) {
      << "Tier: " << o.tier << "; random search " << random_iterations(o) << " iterations; searches:";
   for (const auto& s : o.searches) md << " " << s;
   md << "; execution depth limit " << o.depth
-     << "; context-bound searches capped at " << execution_cap(o) << " executions.\n\n"
-     << "**Bounds.** Relacy keeps a few stores per atomic, never produces load buffering, and these searches are "
-        "random or context-bounded: a pass is a bounded search, not a proof. Context-bound searches are also "
-        "capped: idle workers spin until the frame ends, so the bounded state space of the frame loop is "
-        "effectively unbounded (a one-item scenario passed 2.9 million executions at context bound 1 without "
-        "the search finishing); \"capped\" marks a search that stopped at the cap, i.e. was not exhaustive "
-        "within its bound. A failure is a real execution of the protocol's own source (histories name core/ "
-        "files and lines).\n\n";
+     << "; spin bound " << o.spin_bound << " (frame waits " << o.spin_bound + 1 << ")"
+     << "; tree searches stop at a safety cap of " << execution_cap(o) << " executions.\n\n"
+     << "**Bounds.** Relacy keeps a few stores per atomic and never produces load buffering: a pass is a bounded "
+        "search, not a proof. The context-bound (and full) searches run each scenario as a finite program: every "
+        "wait and idle round may fail at most the spin bound's number of times (one more for frame waits), and an "
+        "execution that would fail once more is discarded, its end-of-execution checks skipped "
+        "(models_check/relacy_backend.hpp, SPIN BOUND: a failed poll changes nothing, so a longer wait is "
+        "equivalent to one in which the other threads ran first). Such a search is exhaustive within its "
+        "context bound: per search the report gives executions run to completion and checked (\"done\") "
+        "and executions discarded by the spin bound. \"capped\" would mark a search stopped by the safety "
+        "cap, i.e. not exhaustive. The bound gives up liveness: a wait that never ends is discarded, not "
+        "reported; the random search runs the unbounded program and still reports livelocks, and a tree "
+        "search with no complete execution fails as vacuous. A failure is a real execution of the protocol's "
+        "own source (histories name core/ files and lines).\n\n";
   js << "{\n  \"tool\": \"relacy\", \"kind\": \"model-checked (bounded search)\", \"tier\": \"" << o.tier
      << "\", \"random_iterations\": " << random_iterations(o) << ",\n";
 
@@ -413,11 +460,11 @@ int main(int argc, char** argv) {
          << ", \"searches\": [";
       for (std::size_t j = 0; j < c.searches.size(); ++j) {
         const auto& sr = c.searches[j];
-        md << (j ? "; " : "") << sr.search << " " << sr.result.iterations << (sr.result.capped ? " it (capped) " : " it ")
-           << fmt_seconds(sr.result.seconds) << " s";
+        md << (j ? "; " : "") << sr.search << " " << search_summary(sr.result) << " " << fmt_seconds(sr.result.seconds) << " s";
         js << (j ? ", " : "") << "{\"search\": \"" << sr.search << "\", \"verdict\": \"" << name(sr.result.verdict)
-           << "\", \"executions\": " << sr.result.iterations << ", \"capped\": " << (sr.result.capped ? "true" : "false")
-           << ", \"seconds\": " << sr.result.seconds << "}";
+           << "\", \"executions\": " << sr.result.iterations << ", \"completed\": " << sr.result.completed
+           << ", \"discarded\": " << sr.result.discarded << ", \"spin_bound\": " << sr.result.spin_bound
+           << ", \"capped\": " << (sr.result.capped ? "true" : "false") << ", \"seconds\": " << sr.result.seconds << "}";
       }
       md << " |\n";
       js << "]}" << (i + 1 < cells.size() ? "," : "") << "\n";
@@ -448,7 +495,8 @@ int main(int argc, char** argv) {
     md << "## Mutation kill matrix: one-step weakenings of " << base.name << "\n\n"
        << "Every labelled site weakened one step (seq_cst → acq_rel → acquire/release → relaxed; a fence "
           "removed), every scenario run against each mutant (random " << mutant_iterations(o)
-       << " iterations, then context bound 1 capped at as many executions) until one kills it.\n\n"
+       << " iterations, then the complete context-bound-1 search of the spin-bounded program) until one kills "
+          "it. A survivor passed every scenario's complete bound-1 search (executions column: all it ran).\n\n"
        << "| site | mutant | killed by | verdict | search | executions | note |\n|---|---|---|---|---|---|---|\n";
     js << "  \"kill_matrix\": {\"base\": \"" << base.name << "\", \"mutants\": [\n";
     const auto mutants = one_step_mutants(base);
@@ -488,7 +536,7 @@ int main(int argc, char** argv) {
       }
       md << "| " << info(s).label << " " << info(s).name << " | " << k.mutant.from << " → " << k.mutant.to << " | "
          << (k.killed ? k.by_scenario : "—") << " | " << (k.killed ? name(k.verdict) : "survived") << " | "
-         << (k.killed ? k.search : "") << " | " << (k.killed ? std::to_string(k.iterations) : "") << " | " << note
+         << (k.killed ? k.search : "") << " | " << (k.killed ? std::to_string(k.iterations) : std::to_string(k.explored) + (k.capped ? " (capped)" : "")) << " | " << note
          << " |\n";
       js << "    {\"site\": \"" << info(s).label << "\", \"name\": \"" << info(s).name << "\", \"from\": \""
          << k.mutant.from << "\", \"to\": \"" << k.mutant.to << "\", \"killed\": " << (k.killed ? "true" : "false")

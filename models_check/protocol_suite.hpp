@@ -29,9 +29,24 @@ struct SuiteContext {
   // Relacy's scheduler finishes. Relacy does not reset globals between executions, which this relies on.
   std::uint64_t execution_cap = 0;
   std::uint64_t executions = 0;
+  // Tree searches run the finite program (relacy_backend.hpp, SPIN BOUND): executions that reached after()
+  // with their checks run, and executions discarded because a wait exceeded the bound (checks skipped).
+  std::uint64_t completed = 0;
+  std::uint64_t discarded = 0;
   // Written by the failing execution just before it fails the test, read after rl::simulate returns.
   Verdict failure = Verdict::kPass;
   char failure_detail[160] = {};
+};
+
+// Relacy's allocator makes every free() a two-way choice point (free now, or defer so a later allocation
+// cannot reuse the address: it hunts use-after-free). The stealing protocol frees no shared memory; the
+// frees in an execution are the frame loop's private bookkeeping (logs, next lists) and the suite's own
+// teardown — about twenty per execution, which multiplies every interleaving by 2^20 and kept the tree
+// searches from finishing even with bounded waits. So the protocol suite sends its heap traffic straight to
+// malloc/free (Relacy does the same for its own allocations, through this counter). The counter is protected
+// in rl::context; a pointer to member named through a derived class is the standard way to reach it.
+struct HeapOutsideRelacy : rl::context {
+  static int& counter() { return rl::ctx().*(&HeapOutsideRelacy::disable_alloc_); }
 };
 
 inline SuiteContext& suite_context() {
@@ -57,8 +72,18 @@ struct ProtocolSuite : rl::test_suite<ProtocolSuite<Threads, Mode>, Threads> {
 
   bool collapsed = false;  // past the execution cap: this execution does nothing
 
+  // The allocator bypass spans the whole execution: from before() (which allocates `core`) to the
+  // destructor (which frees it). A failing execution never reaches the destructor, but it ends the search,
+  // and each rl::simulate builds a fresh context.
+  ~ProtocolSuite() {
+    core.reset();
+    --HeapOutsideRelacy::counter();
+  }
+
   void before() {
+    ++HeapOutsideRelacy::counter();
     SuiteContext& ctx = suite_context();
+    spin_bound().discarded = false;
     if (ctx.execution_cap != 0 && ++ctx.executions > ctx.execution_cap) {
       collapsed = true;
       return;
@@ -75,6 +100,8 @@ struct ProtocolSuite : rl::test_suite<ProtocolSuite<Threads, Mode>, Threads> {
 
   void thread(unsigned index) {
     if (collapsed) return;
+    // Landing point for a discarded execution (SPIN BOUND): the thread body ends here, nothing else runs.
+    if (setjmp(spin_bound().exits[index]) != 0) return;
     if (spec.with_caller && index == spec.workers) return caller();
     for (std::uint32_t k = 1; k <= spec.frames; ++k) {
       core->await_frame_start(k);
@@ -120,6 +147,11 @@ struct ProtocolSuite : rl::test_suite<ProtocolSuite<Threads, Mode>, Threads> {
 
   void after() {
     if (collapsed) return;
+    if (spin_bound().discarded) {  // a wait exceeded the bound: not a complete execution, nothing to check
+      ++suite_context().discarded;
+      return;
+    }
+    ++suite_context().completed;
     for (std::uint32_t k = 1; k <= spec.frames; ++k) {
       for (ItemId i = 0; i < spec.items; ++i) {
         if (runs[k - 1][i].load(rl::mo_relaxed, $) == 0) {
@@ -151,7 +183,12 @@ SearchResult simulate_suite(std::string_view name, const SearchConfig& config) {
   suite_context().failure = Verdict::kPass;
   suite_context().failure_detail[0] = '\0';
   suite_context().executions = 0;
+  suite_context().completed = 0;
+  suite_context().discarded = 0;
   suite_context().execution_cap = config.kind == SearchKind::kRandom ? 0 : config.execution_cap;
+  // The spin bound makes tree searches finite; the random search keeps the unbounded program, so it still
+  // reports a livelock past the depth limit.
+  spin_bound().k = config.kind == SearchKind::kRandom ? 0 : config.spin_bound;
 
   std::ofstream quiet("/dev/null");  // Relacy's own printing; an ofstream, never a stringstream (see notes)
   rl::test_params p;
@@ -182,6 +219,14 @@ SearchResult simulate_suite(std::string_view name, const SearchConfig& config) {
     r.iterations = suite_context().execution_cap;
   }
   r.detail = suite_context().failure_detail;
+  r.completed = suite_context().completed;
+  r.discarded = suite_context().discarded;
+  r.spin_bound = spin_bound().k;
+  if (r.verdict == Verdict::kPass && config.kind != SearchKind::kRandom && r.completed == 0) {
+    // Every execution was discarded: the search checked nothing (a wait that can never end looks like this).
+    r.verdict = Verdict::kOtherFailure;
+    r.detail = "vacuous: every execution was discarded by the spin bound";
+  }
 
   if (r.verdict != Verdict::kPass && !config.history_path.empty()) {
     // Replay exactly the failing execution with history collection on.
@@ -195,6 +240,7 @@ SearchResult simulate_suite(std::string_view name, const SearchConfig& config) {
     replay.iteration_count = p.search_type == rl::sched_random ? config.iterations : 0;
     replay.initial_state = p.final_state;
     suite_context().execution_cap = 0;  // the replayed execution must run in full
+    // spin_bound().k stays as in the search: the replay must take the same path, discards included.
     replay.collect_history = true;
     replay.output_history = true;
     history << "scenario " << name << " under " << current_table().name << ": " << r.relacy_result

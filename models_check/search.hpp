@@ -21,10 +21,12 @@ struct SearchConfig {
   SearchKind kind = SearchKind::kRandom;
   std::uint64_t iterations = 100000;  // random search
   unsigned bound = 1;                 // context-bound search
-  // Context-bound and full searches: stop exploring after this many executions (0: no cap). Idle workers spin
-  // until termination, so the bounded state space of the frame loop is effectively unbounded; without a cap
-  // these searches do not finish even for one item.
+  // Context-bound and full searches: stop exploring after this many executions (0: no cap). A safety net
+  // only: with the spin bound the program is finite and the fast tier's searches finish well below it.
   std::uint64_t execution_cap = 0;
+  // Tree searches: failed iterations allowed per wait before the execution is discarded (relacy_backend.hpp,
+  // SPIN BOUND). 0: unbounded. The random search always runs unbounded.
+  unsigned spin_bound = 1;
   unsigned depth_limit = 20000;       // Relacy's execution_depth_limit (scheduling points per execution)
   std::string history_path;           // on failure, replay the failing execution and write its history here
   bool relacy_progress = false;       // let Relacy print its own progress (percent of the search) to stderr
@@ -58,6 +60,9 @@ struct SearchResult {
   Verdict verdict = Verdict::kPass;
   std::string relacy_result;   // Relacy's own name for the result
   std::uint64_t iterations = 0;  // executions explored (until the failure, if any)
+  std::uint64_t completed = 0;   // tree searches: executions run to the end and checked
+  std::uint64_t discarded = 0;   // tree searches: executions discarded by the spin bound (not checked)
+  unsigned spin_bound = 0;       // the bound the search ran under (0: unbounded)
   bool capped = false;           // the search hit SearchConfig::execution_cap: not exhaustive within its bound
   double seconds = 0;
   std::string detail;            // e.g. "item 1 ran twice in frame 1"
