@@ -24,4 +24,13 @@ struct BrokenNoTransient : Fenced {
   static constexpr Defect defects() noexcept { return Defect::kOwnerSkipsTransient; }
 };
 
+// The thief joins the active-worker count after lowering the victim's End (A1 after T3): between the two,
+// the victim can exhaust its shortened list and leave, the count reaches 0 while the stolen share is held by
+// nobody counted, and idle workers quit the frame while stealable work remains. Every item still runs once
+// (the thief installs and drains its share), so only a termination check catches it.
+struct BrokenJoinsLate : Fenced {
+  static constexpr std::string_view kName = "Broken:JoinsLate";
+  static constexpr Defect defects() noexcept { return Defect::kThiefJoinsLate; }
+};
+
 }  // namespace frontsteal

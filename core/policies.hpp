@@ -51,6 +51,8 @@ enum class Defect : std::uint8_t {
   // Greedy rendering's publication (component_publication.hpp):
   kReuseWithoutGrace = 1 << 2,    // the frame driver reuses a retired slot without waiting for the pusher
   kPublishEachSurface = 1 << 3,   // every surface swaps its component in (no per-component count: torn)
+  // Termination (active_workers.hpp):
+  kThiefJoinsLate = 1 << 4,       // thief joins the active count after lowering End (A1 after T3)
 };
 
 constexpr Defect operator|(Defect a, Defect b) noexcept {

@@ -246,7 +246,14 @@ class Thief {
   }
 
   // Joins the active workers (termination, A1) and lowers the victim's End: the steal's linearization point.
+  // A1 must come first (I-T of active_workers.hpp): once End is lowered the victim may exhaust its list and
+  // leave, and the share [mid, e) is then held by no counted worker until A1.
   void shrink_victim(Slot& victim) noexcept {
+    if (has(Policy::defects(), Defect::kThiefJoinsLate)) {  // negative control only: the order reversed
+      A::template store<Site::kThiefShrinkEnd>(victim.end, mid_);          // T3
+      active_.join();                                                      // A1 (too late)
+      return;
+    }
     active_.join();                                                        // A1
     A::template store<Site::kThiefShrinkEnd>(victim.end, mid_);            // T3
   }

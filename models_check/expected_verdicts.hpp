@@ -26,6 +26,9 @@ inline Expectation expected_verdict(const PolicyTable& policy, const ScenarioSpe
   if (mode == CheckMode::kAtLeastOnce) return {{Verdict::kPass}, "every policy is at least at-least-once"};
   if (!faulty) return {{Verdict::kPass}, "exactly-once contract"};
   if (scenario.items == 0) return {{Verdict::kPass}, "no item, nothing to duplicate"};
+  if (has(policy.defects, Defect::kThiefJoinsLate)) {
+    return {{Verdict::kEarlyQuit}, "negative control: a worker quits while a stolen share is uncounted"};
+  }
   if (policy.defects != Defect::kNone) return {{Verdict::kDuplicate}, "negative control: the defect must be caught"};
   return {{Verdict::kDuplicate}, "at-least-once: store buffering at the handshake duplicates an item"};
 }

@@ -33,6 +33,10 @@ struct SuiteContext {
   // with their checks run, and executions discarded because a wait exceeded the bound (checks skipped).
   std::uint64_t completed = 0;
   std::uint64_t discarded = 0;
+  // Ghost state for the termination check, plain variables: Relacy runs every thread on fibers of one OS
+  // thread, so they follow the interleaving itself, not any thread's view of memory.
+  std::uint32_t frame_of_thread[SpinBound::kMaxThreads] = {};
+  std::uint32_t items_run[kMaxScenarioFrames] = {};  // distinct items that started running in each frame
   // Written by the failing execution just before it fails the test, read after rl::simulate returns.
   Verdict failure = Verdict::kPass;
   char failure_detail[160] = {};
@@ -58,6 +62,19 @@ inline void fail_with(Verdict v, const char* detail, const rl::debug_info& where
   suite_context().failure = v;
   std::snprintf(suite_context().failure_detail, sizeof suite_context().failure_detail, "%s", detail);
   rl::ctx().fail_test(detail, rl::test_result_user_assert_failed, where);
+}
+
+// A worker read the active count 0 at A3 and is about to stop looking for work: by the count's invariant
+// (I-T, active_workers.hpp) every item of its frame has run by now. If one has not, it is still in a list
+// or in a thief's share, and this worker quits while stealable work remains.
+inline void check_idle_seen() {
+  SuiteContext& ctx = suite_context();
+  const std::uint32_t k = ctx.frame_of_thread[rl::thread_index()];
+  if (k == 0 || ctx.items_run[k - 1] == ctx.scenario->items) return;
+  char text[120];
+  std::snprintf(text, sizeof text, "a worker stopped looking for work in frame %u with %u of %u items not yet run", k,
+                ctx.scenario->items - ctx.items_run[k - 1], ctx.scenario->items);
+  fail_with(Verdict::kEarlyQuit, text, $);
 }
 
 template <rl::thread_id_t Threads, CheckMode Mode>
@@ -88,6 +105,9 @@ struct ProtocolSuite : rl::test_suite<ProtocolSuite<Threads, Mode>, Threads> {
       collapsed = true;
       return;
     }
+    for (auto& f : ctx.frame_of_thread) f = 0;
+    for (auto& n : ctx.items_run) n = 0;
+    idle_seen_hook = &check_idle_seen;
     core = std::make_unique<Workers>(spec.workers, spec.items, 1);
     core->reseed(spec.initial);
     for (WorkerId w = 0; w < spec.victims.size(); ++w) core->set_victims(w, spec.victims[w]);
@@ -105,6 +125,7 @@ struct ProtocolSuite : rl::test_suite<ProtocolSuite<Threads, Mode>, Threads> {
     if (spec.with_caller && index == spec.workers) return caller();
     for (std::uint32_t k = 1; k <= spec.frames; ++k) {
       core->await_frame_start(k);
+      suite_context().frame_of_thread[index] = k;
       auto process = [this, k](ItemId id, WorkerId) { run_item(id, k); };
       core->run_frame(static_cast<WorkerId>(index), k, process);
     }
@@ -135,6 +156,7 @@ struct ProtocolSuite : rl::test_suite<ProtocolSuite<Threads, Mode>, Threads> {
       if (input != static_cast<int>(k)) fail_with(Verdict::kOtherFailure, "worker read a stale frame input", $);
     }
     const int earlier = runs[k - 1][id].fetch_add(1, rl::mo_relaxed, $);
+    if (earlier == 0) ++suite_context().items_run[k - 1];
     if (Mode == CheckMode::kExactlyOnce) {
       if (earlier != 0) {
         char text[96];

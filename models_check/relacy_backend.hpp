@@ -100,6 +100,10 @@ inline SpinBound& spin_bound() {
   return b;
 }
 
+// Termination check (harness): called when a worker's A3 poll reads an active count of 0, i.e. when the
+// worker is about to stop looking for work. The harness checks that every item of its frame has run.
+inline void (*idle_seen_hook)() = nullptr;
+
 struct RelacyBackend {
   static constexpr std::string_view kName = "relacy";
 
@@ -125,9 +129,11 @@ struct RelacyBackend {
   }
 
   template <class T>
-  static T load(const Atomic<T>& a, Mo mo, Site, Where w) {
+  static T load(const Atomic<T>& a, Mo mo, Site site, Where w) {
     spin_bound().stop_if_discarded();
-    return a.load(native(mo), info(w));
+    const T v = a.load(native(mo), info(w));
+    if (site == Site::kActivePoll && v == T{} && idle_seen_hook != nullptr) idle_seen_hook();
+    return v;
   }
   template <class T>
   static void store(Atomic<T>& a, T v, Mo mo, Site, Where w) {

@@ -32,13 +32,16 @@ struct SearchConfig {
   bool relacy_progress = false;       // let Relacy print its own progress (percent of the search) to stderr
 };
 
-enum class Verdict { kPass, kDuplicate, kLost, kDataRace, kDeadlock, kLivelock, kOtherFailure };
+// kEarlyQuit: a worker stopped looking for work (read the active count 0 at A3) while an item of the frame
+// had not yet run: the termination count failed at what it exists for.
+enum class Verdict { kPass, kDuplicate, kLost, kEarlyQuit, kDataRace, kDeadlock, kLivelock, kOtherFailure };
 
 constexpr std::string_view name(Verdict v) {
   switch (v) {
     case Verdict::kPass: return "pass";
     case Verdict::kDuplicate: return "duplicate";
     case Verdict::kLost: return "lost";
+    case Verdict::kEarlyQuit: return "early quit";
     case Verdict::kDataRace: return "data race";
     case Verdict::kDeadlock: return "deadlock";
     case Verdict::kLivelock: return "livelock";
