@@ -241,6 +241,8 @@ SearchResult simulate_suite(std::string_view name, const SearchConfig& config) {
     r.iterations = suite_context().execution_cap;
   }
   r.detail = suite_context().failure_detail;
+  r.kind = config.kind;
+  r.bound = config.kind == SearchKind::kContextBound ? config.bound : 0;
   r.completed = suite_context().completed;
   r.discarded = suite_context().discarded;
   r.spin_bound = spin_bound().k;

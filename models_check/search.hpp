@@ -62,6 +62,8 @@ constexpr std::string_view name(SearchKind k) {
 struct SearchResult {
   Verdict verdict = Verdict::kPass;
   std::string relacy_result;   // Relacy's own name for the result
+  SearchKind kind = SearchKind::kRandom;  // the search that produced it
+  unsigned bound = 0;                     // its context bound (context-bound searches)
   std::uint64_t iterations = 0;  // executions explored (until the failure, if any)
   std::uint64_t completed = 0;   // tree searches: executions run to the end and checked
   std::uint64_t discarded = 0;   // tree searches: executions discarded by the spin bound (not checked)
