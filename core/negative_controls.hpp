@@ -33,4 +33,14 @@ struct BrokenJoinsLate : Fenced {
   static constexpr Defect defects() noexcept { return Defect::kThiefJoinsLate; }
 };
 
+// The share copy takes mid as the lower bound of every list entry it copies, instead of max(mid, the entry's
+// start). For the entry that holds mid the two agree, so with one-range lists nothing changes; an entry that
+// starts above mid is copied from below its own start (unsigned wrap), handing the thief ids of an earlier
+// entry, which the victim also runs. Only a scenario whose steal spans several entries can catch it
+// (models_check multi_range_steal).
+struct BrokenShareLowerBound : Fenced {
+  static constexpr std::string_view kName = "Broken:ShareLowerBound";
+  static constexpr Defect defects() noexcept { return Defect::kShareLowerBound; }
+};
+
 }  // namespace frontsteal

@@ -238,7 +238,9 @@ class Thief {
     for (std::uint32_t i = first_entry_at(victim, n, mid_); i < n; ++i) {
       const SegmentEntry e = A::read(victim.entries[i]);
       if (e.flat_begin >= end_) break;
-      const std::uint32_t lo = std::max(mid_, e.flat_begin);
+      // An entry that starts above mid is copied from its own start (max): the share spans several entries.
+      const std::uint32_t lo = has(Policy::defects(), Defect::kShareLowerBound) ? mid_  // negative control only
+                                                                               : std::max(mid_, e.flat_begin);
       const std::uint32_t hi = std::min(end_, e.flat_end());
       append_merging(share_, {e.ids.begin + (lo - e.flat_begin), e.ids.begin + (hi - e.flat_begin)});
     }

@@ -51,7 +51,7 @@ options:
                          slow: 1e6 random iterations, bounds 1 and 2, bound 3 for 2-thread scenarios, 1e5
                          per mutant                                                           (default fast)
   --policy LIST          comma-separated: SeqCst,Paper,Fenced,Asymmetric,Minimal,Broken:SkipsReread,
-                         Broken:NoTransient,Broken:JoinsLate, or all                                          (default all)
+                         Broken:NoTransient,Broken:JoinsLate,Broken:ShareLowerBound, or all (default all)
   --scenario LIST        comma-separated scenario names, or all                               (default all)
   --search LIST          comma-separated: random,bound1,bound2,bound3,full; boundN:T only for scenarios of at
                          most T threads                                     (default random,bound1,bound2:2)
@@ -107,7 +107,8 @@ std::uint64_t parse_count(std::string_view flag, std::string_view text) {
 std::vector<PolicyTable> known_policies() {
   return {table_of<fs::SeqCst>(),   table_of<fs::Paper>(),   table_of<fs::Fenced>(),
           table_of<fs::Asymmetric>(), table_of<fs::Minimal>(), table_of<fs::BrokenSkipsReread>(),
-          table_of<fs::BrokenNoTransient>(), table_of<fs::BrokenJoinsLate>()};
+          table_of<fs::BrokenNoTransient>(), table_of<fs::BrokenJoinsLate>(),
+          table_of<fs::BrokenShareLowerBound>()};
 }
 
 std::optional<PolicyTable> policy_by_name(std::string_view name) {

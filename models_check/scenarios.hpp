@@ -48,6 +48,8 @@ inline const std::vector<ScenarioSpec>& scenarios() {
        2, 0, 2, {{}, {}}, {}},
       {"edge_one_item", "one item: owner and thief race for it",
        2, 1, 1, {{{0, 1}}, {}}, {}},
+      {"multi_range_steal", "a list of four one-item entries, not in id order: the share spans several entries",
+       2, 4, 1, {{{0, 1}, {2, 3}, {1, 2}, {3, 4}}, {}}, {}},
       {"edge_victim_finishing", "both lists nearly done: a victim finishes while being stolen from",
        2, 3, 1, {{{0, 2}}, {{2, 3}}}, {}},
   };
