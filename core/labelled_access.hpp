@@ -42,6 +42,17 @@ struct Access {
     static_assert(info(S).kind == SiteKind::kReadModifyWrite, "site is not a read-modify-write");
     return Backend::fetch_sub(a, v, Policy::order(S), S, where);
   }
+  // Strong compare-exchange: true, and `expected` unchanged, if `a` held `expected` (then it holds `desired`);
+  // false with `expected` := the value found. The policy's order applies to the success case. The failure
+  // order is always relaxed, derived here rather than asked of the policy: a protocol may use a failed CAS
+  // only as "someone else won" (the Chase–Lev owner and thieves then return without touching the element),
+  // never to read what the winner published, so the failed load needs no order (Lê et al. PPoPP'13 use
+  // relaxed there too). A site whose failure result carries data would need its own failure order.
+  template <Site S, class A, class T>
+  static bool compare_exchange(A& a, T& expected, T desired, Where where = Where::current()) noexcept {
+    static_assert(info(S).kind == SiteKind::kReadModifyWrite, "site is not a read-modify-write");
+    return Backend::compare_exchange(a, expected, desired, Policy::order(S), Mo::kRelaxed, S, where);
+  }
   template <Site S>
   static void fence(Where where = Where::current()) noexcept {
     static_assert(info(S).kind == SiteKind::kFence, "site is not a fence");

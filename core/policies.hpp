@@ -53,6 +53,8 @@ enum class Defect : std::uint8_t {
   kPublishEachSurface = 1 << 3,   // every surface swaps its component in (no per-component count: torn)
   // Termination (active_workers.hpp):
   kThiefJoinsLate = 1 << 4,       // thief joins the active count after lowering End (A1 after T3)
+  // The Chase–Lev deque (chase_lev_deque.hpp):
+  kTakeLastWithoutCas = 1 << 5,   // the owner keeps the last element without racing thieves for it (no K6)
   // The steal's share copy (stealing_protocol.hpp, plan_share):
   kShareLowerBound = 1 << 6,      // every copied entry starts at mid, not at max(mid, entry start)
 };

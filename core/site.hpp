@@ -2,7 +2,8 @@
 //
 // A memory-order policy (policies.hpp) assigns an order to each Site; a backend receives the Site with
 // every operation so it can inject chaos there (stress/) or name it in a trace (models_check/). The labels
-// (O1, F1, T3, ...) are the ones used in the opening comment of stealing_protocol.hpp, in mutation-testing
+// (O1, F1, T3, ...) are the ones used in the opening comment of stealing_protocol.hpp (and of
+// component_publication.hpp and chase_lev_deque.hpp for their protocols), in mutation-testing
 // output and in failure reports. Adding a site means adding a row to kSiteTable.
 #pragma once
 
@@ -53,6 +54,29 @@ enum class Site : std::uint8_t {
   kWriterPublish,         // W2  last tessellator of c: Published[c] := back slot (the atomic swap)
   kWriterReadStarted,     // W3  same tessellator: read Started, the retired slot's reclamation stamp
   kDriverReadCompleted,   // D1  frame driver: read Completed to see which retired slots are free
+  // The Chase–Lev deque (chase_lev_deque.hpp). Labels B (push: the Bottom end), K (taKe), S (Steal), H (size
+  // Hint); Lê et al.'s own labels (P1-P4, T1-T5, S1-S5) collide with the publication and stealing protocols,
+  // so the deque's opening comment maps each of ours to theirs.
+  kPushReadBottom,        // B1  owner: read its own bottom
+  kPushReadTop,           // B2  owner: read top to check for room (Lê et al. P1)
+  kPushWriteSlot,         // B3  owner: buffer[b] := x (P2)
+  kPushReleaseFence,      // B4  release fence between B3 and B5 (P3)
+  kPushPublishBottom,     // B5  bottom := b + 1, the linearization point of push (P4)
+  kTakeReadBottom,        // K1  owner: read its own bottom (T1)
+  kTakeReserveBottom,     // K2  bottom := b - 1, reserving the element below (T2)
+  kTakeFence,             // K3  seq_cst fence between K2 and K4 (T3)
+  kTakeReadTop,           // K4  read top (T4)
+  kTakeReadSlot,          // K5  read buffer[b]
+  kTakeClaimLast,         // K6  CAS top t -> t + 1 for the last element (T5)
+  kTakeRestoreEmpty,      // K7  bottom := b + 1 after finding the deque empty
+  kTakeRestoreLast,       // K8  bottom := b + 1 after the race for the last element
+  kStealReadTop,          // S1  thief: read top
+  kStealFence,            // S2  seq_cst fence between S1 and S3
+  kStealReadBottom,       // S3  read bottom
+  kStealReadSlot,         // S4  read buffer[t] (before the CAS: afterwards the slot may be reused)
+  kStealClaim,            // S5  CAS top t -> t + 1, the linearization point of a successful steal
+  kHintReadBottom,        // H1  size_hint: read bottom (statistics and tests only)
+  kHintReadTop,           // H2  size_hint: read top
   kCount
 };
 
@@ -61,9 +85,10 @@ inline constexpr std::size_t kSiteCount = static_cast<std::size_t>(Site::kCount)
 enum class SiteKind : std::uint8_t { kLoad, kStore, kReadModifyWrite, kFence };
 
 // Which protocol a site belongs to: the stealing protocol (stealing_protocol.hpp, frame_loop.hpp) or greedy
-// rendering's triangle publication (component_publication.hpp). Mutation testing weakens one protocol's sites
-// at a time; a policy of one protocol never meets the other's sites.
-enum class Protocol : std::uint8_t { kStealing, kPublication };
+// rendering's triangle publication (component_publication.hpp), or the Chase–Lev deque of the baseline
+// scheduler (chase_lev_deque.hpp). Mutation testing weakens one protocol's sites at a time; a policy of one
+// protocol never meets the other's sites.
+enum class Protocol : std::uint8_t { kStealing, kPublication, kChaseLev };
 
 struct SiteInfo {
   Site site;
@@ -114,6 +139,46 @@ inline constexpr std::array<SiteInfo, kSiteCount> kSiteTable{{
      "read Started: the retired slot's reclamation stamp", Protocol::kPublication},
     {Site::kDriverReadCompleted, "D1", "driver.read_completed", SiteKind::kLoad,
      "read Completed: retired slots stamped at or below it are free", Protocol::kPublication},
+    {Site::kPushReadBottom, "B1", "push.read_bottom", SiteKind::kLoad, "owner reads its own bottom",
+     Protocol::kChaseLev},
+    {Site::kPushReadTop, "B2", "push.read_top", SiteKind::kLoad, "read top: is there room for one more element",
+     Protocol::kChaseLev},
+    {Site::kPushWriteSlot, "B3", "push.write_slot", SiteKind::kStore, "buffer[b] := x",
+     Protocol::kChaseLev},
+    {Site::kPushReleaseFence, "B4", "push.release_fence", SiteKind::kFence, "orders B3 before B5",
+     Protocol::kChaseLev},
+    {Site::kPushPublishBottom, "B5", "push.publish_bottom", SiteKind::kStore, "bottom := b + 1: the element is stealable",
+     Protocol::kChaseLev},
+    {Site::kTakeReadBottom, "K1", "take.read_bottom", SiteKind::kLoad, "owner reads its own bottom",
+     Protocol::kChaseLev},
+    {Site::kTakeReserveBottom, "K2", "take.reserve_bottom", SiteKind::kStore, "bottom := b - 1 before looking at top",
+     Protocol::kChaseLev},
+    {Site::kTakeFence, "K3", "take.storeload_fence", SiteKind::kFence, "StoreLoad between K2 and K4",
+     Protocol::kChaseLev},
+    {Site::kTakeReadTop, "K4", "take.read_top", SiteKind::kLoad, "read top: empty, many, or the last element",
+     Protocol::kChaseLev},
+    {Site::kTakeReadSlot, "K5", "take.read_slot", SiteKind::kLoad, "read buffer[b]",
+     Protocol::kChaseLev},
+    {Site::kTakeClaimLast, "K6", "take.claim_last", SiteKind::kReadModifyWrite, "CAS top t -> t + 1: race thieves for the last element",
+     Protocol::kChaseLev},
+    {Site::kTakeRestoreEmpty, "K7", "take.restore_empty", SiteKind::kStore, "bottom := b + 1: the deque was empty",
+     Protocol::kChaseLev},
+    {Site::kTakeRestoreLast, "K8", "take.restore_last", SiteKind::kStore, "bottom := b + 1 after the last-element race",
+     Protocol::kChaseLev},
+    {Site::kStealReadTop, "S1", "steal.read_top", SiteKind::kLoad, "thief reads top",
+     Protocol::kChaseLev},
+    {Site::kStealFence, "S2", "steal.storeload_fence", SiteKind::kFence, "orders S1 before S3 in the total order of fences",
+     Protocol::kChaseLev},
+    {Site::kStealReadBottom, "S3", "steal.read_bottom", SiteKind::kLoad, "read bottom: is there an element at top",
+     Protocol::kChaseLev},
+    {Site::kStealReadSlot, "S4", "steal.read_slot", SiteKind::kLoad, "read buffer[t] before claiming it",
+     Protocol::kChaseLev},
+    {Site::kStealClaim, "S5", "steal.claim", SiteKind::kReadModifyWrite, "CAS top t -> t + 1: the steal",
+     Protocol::kChaseLev},
+    {Site::kHintReadBottom, "H1", "hint.read_bottom", SiteKind::kLoad, "size_hint reads bottom (racy, statistics only)",
+     Protocol::kChaseLev},
+    {Site::kHintReadTop, "H2", "hint.read_top", SiteKind::kLoad, "size_hint reads top (racy, statistics only)",
+     Protocol::kChaseLev},
 }};
 
 constexpr const SiteInfo& info(Site s) noexcept { return kSiteTable[static_cast<std::size_t>(s)]; }

@@ -71,6 +71,10 @@ struct StdBackend {
   static T fetch_sub(Atomic<T>& a, T v, Mo mo, Site, Where) noexcept {
     return a.fetch_sub(v, native(mo));
   }
+  template <class T>
+  static bool compare_exchange(Atomic<T>& a, T& expected, T desired, Mo mo, Mo failure, Site, Where) noexcept {
+    return a.compare_exchange_strong(expected, desired, native(mo), native(failure));
+  }
 
   static void fence(Fence f, Site, Where) noexcept {
     switch (f) {

@@ -155,6 +155,11 @@ struct RelacyBackend {
     spin_bound().stop_if_discarded();
     return a.fetch_sub(v, native(mo), info(w));
   }
+  template <class T>
+  static bool compare_exchange(Atomic<T>& a, T& expected, T desired, Mo mo, Mo failure, Site, Where w) {
+    spin_bound().stop_if_discarded();
+    return a.compare_exchange_strong(expected, desired, native(mo), info(w), native(failure), info(w));
+  }
 
   static void fence(Fence f, Site, Where w) {
     spin_bound().stop_if_discarded();

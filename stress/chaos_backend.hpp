@@ -107,6 +107,12 @@ struct ChaosBackend : StdBackend {
     detail::maybe_inject();
     return StdBackend::fetch_sub(a, v, mo, site, where);
   }
+  template <class T>
+  static bool compare_exchange(Atomic<T>& a, T& expected, T desired, Mo mo, Mo failure, Site site,
+                               Where where) noexcept {
+    detail::maybe_inject();
+    return StdBackend::compare_exchange(a, expected, desired, mo, failure, site, where);
+  }
   static void fence(Fence f, Site site, Where where) noexcept {
     detail::maybe_inject();
 #if defined(__SANITIZE_THREAD__)

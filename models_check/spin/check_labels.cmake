@@ -2,8 +2,9 @@
 #
 #   cmake -DSITE_HPP=core/site.hpp -DPML=models_check/spin/stealing.pml -P check_labels.cmake
 #
-# From site.hpp: every row of kSiteTable that does not belong to Protocol::kPublication (greedy rendering's
-# sites, which the stealing model has no business with). From the model, with comments removed: the labels
+# From site.hpp: every row of kSiteTable that belongs to Protocol::kStealing (rows that name no protocol
+# default to it); the other protocols' rows (greedy rendering's publication, the Chase–Lev deque) are not the
+# stealing model's business. From the model, with comments removed: the labels
 # declared in its `mtype = { ... }` line, and the labels its steps carry (an access's first argument, or the
 # label a merged step prints). The three sets must be equal, and the model must use no other label-shaped
 # token (a typo such as O5 fails too).
@@ -19,7 +20,7 @@ string(REPLACE ";" "," site_text "${site_text}")  # a ';' in a row's text would 
 string(REGEX MATCHALL "\\{Site::k[A-Za-z]+, \"[A-Z][0-9]\"[^}]*\\}" rows "${site_text}")
 set(site_labels)
 foreach(row IN LISTS rows)
-  if(row MATCHES "Protocol::kPublication")
+  if(row MATCHES "Protocol::k" AND NOT row MATCHES "Protocol::kStealing")
     continue()
   endif()
   string(REGEX MATCH "\"([A-Z][0-9])\"" _ "${row}")
