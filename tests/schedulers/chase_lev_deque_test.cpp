@@ -1,5 +1,6 @@
-// The Chase–Lev deque (schedulers/chase_lev_deque.hpp): sequential semantics, capacity, and every element
-// taken exactly once when an owner races thieves.
+// The Chase–Lev deque (core/chase_lev_deque.hpp, as the scheduler uses it through schedulers/chase_lev_deque.hpp):
+// sequential semantics, capacity, and every element taken exactly once when an owner races thieves, on std atomics
+// and under the stress backend's chaos injection.
 #include <atomic>
 #include <thread>
 #include <vector>
@@ -8,6 +9,7 @@
 
 #include "core/execution_counter.hpp"
 #include "schedulers/chase_lev_deque.hpp"
+#include "stress/chaos_backend.hpp"
 
 namespace sc = frontsteal::sched;
 
@@ -33,9 +35,11 @@ TEST_CASE("owner takes LIFO, thieves steal FIFO, a full deque refuses a push", "
   REQUIRE(d.size_hint() == 0);
 }
 
-TEST_CASE("an owner racing three thieves: every element is taken exactly once", "[chase-lev]") {
-  constexpr std::uint32_t kElements = 200000;
-  sc::ChaseLevDeque<std::uint64_t> d(64);
+namespace {
+
+template <class Deque>
+void owner_races_three_thieves(std::uint32_t kElements) {
+  Deque d(64);
   frontsteal::ExecutionCounter taken(kElements);
   std::atomic<bool> done{false};
   std::vector<std::thread> thieves;
@@ -66,4 +70,22 @@ TEST_CASE("an owner racing three thieves: every element is taken exactly once", 
   const auto a = taken.audit_and_reset();
   INFO(a);
   REQUIRE(a.exactly_once());
+}
+
+}  // namespace
+
+TEST_CASE("an owner racing three thieves: every element is taken exactly once", "[chase-lev]") {
+  owner_races_three_thieves<sc::ChaseLevDeque<std::uint64_t>>(200000);
+}
+
+TEST_CASE("the same race under chaos injection at every labelled site", "[chase-lev]") {
+  namespace st = frontsteal::stress;
+  const st::ChaosSettings saved = st::chaos_settings();
+  st::chaos_settings().per_million = 20000;  // 2 % of the deque's accesses yield, spin or sleep
+  st::chaos_settings().seed = 7;
+  const std::uint64_t before = st::chaos_injections().load();
+  owner_races_three_thieves<frontsteal::ChaseLevDeque<std::uint64_t, st::ChaosBackend, frontsteal::ChaseLevOrders>>(
+      20000);
+  st::chaos_settings() = saved;
+  REQUIRE(st::chaos_injections().load() > before);  // the chaos did happen
 }
