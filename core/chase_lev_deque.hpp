@@ -43,14 +43,16 @@
 //   through a CAS on top, and exactly one wins.
 //   A failed CAS (K6, S5) loads with relaxed order (labelled_access.hpp): the loser returns without the element.
 // ERRATUM (what we checked; details and sources in models_check/results/chaselev.md)
-//   The published C11 code has one known bug, found by the CDSChecker authors (Norris & Demsky, OOPSLA'13) and
-//   fixed in their benchmark copy (github.com/computersforpeace/model-checker-benchmarks,
-//   chase-lev-deque-bugfix/deque.c: "Bug in paper...should have next line..."): after push resizes the buffer it
+//   The one bug in the published C11 code that we found documented is fixed in the benchmark suite of
+//   CDSChecker's authors (Norris & Demsky, OOPSLA'13; github.com/computersforpeace/model-checker-benchmarks,
+//   chase-lev-deque-bugfix/deque.c, "Bug in paper...should have next line..."): after push resizes the buffer it
 //   must reload the array pointer, or it writes the element into the old array. It concerns resize only, which
-//   this deque does not have; the orders above are the paper's, unchanged. Two further pitfalls reported by
-//   implementers, both avoided here: unsigned indices underflow when take reserves on an empty deque
-//   (crossbeam-rs/crossbeam PR #33) — ours are signed; and a thief must read the slot before its CAS, since
-//   after the CAS the owner may reuse the slot (crossbeam-rs/crossbeam PR #149) — ours does (S4 before S5).
+//   this deque does not have, and changes no memory order: the orders above are the paper's, unchanged. We found
+//   no erratum text by the authors themselves. Two further pitfalls reported by implementers, both avoided here:
+//   unsigned indices underflow when take reserves on an empty deque (crossbeam-rs/crossbeam PR #33) — ours are
+//   signed; and a thief must read the element before its CAS, since afterwards the buffer may be freed by a
+//   resize (crossbeam-rs/crossbeam PR #149) or, in a fixed ring, the slot reused by the owner — ours reads at S4,
+//   before S5.
 // PROGRESS
 //   push and take are wait-free; steal is lock-free (it fails with kLostRace only when another operation
 //   succeeded). Nothing here waits.
