@@ -28,6 +28,8 @@ class ActiveWorkers {
   [[nodiscard]] bool all_idle() const noexcept {
     return A::template load<Site::kActivePoll>(count_) == 0u;                                      // A3
   }
+  // Diagnostics only (StealingWorkers::debug_state): the count as some recent moment saw it.
+  [[nodiscard]] std::uint32_t debug_count() const noexcept { return A::peek(count_); }
   // Only the last worker to arrive at a frame boundary calls this, while every other worker waits.
   void rearm(std::uint32_t workers) noexcept {
     A::template store<Site::kFrameResetActive>(count_, workers);                                   // E4

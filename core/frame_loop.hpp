@@ -13,6 +13,9 @@
 //                is at-least-once (duplicates removed), installs every worker's list for frame k+1 (so all
 //                lists are stealable from the first instant of the frame), re-arms termination (E4),
 //                publishes done (E5).
+//   observer     any other thread (a watchdog, core/watchdog.hpp) may call debug_state() at any time: relaxed
+//                atomic reads of the slots and counters, outside every labelled site, so it neither orders nor
+//                perturbs anything; what it returns is a racy, diagnostic picture (workers_snapshot.hpp).
 //
 // OWNERSHIP
 //   Worker (owner, thief, log, next_list, stats, failure)   its worker's thread during a frame; the caller
@@ -54,6 +57,7 @@
 #include "core/policies.hpp"
 #include "core/stealing_protocol.hpp"
 #include "core/thread_cpu_time.hpp"
+#include "core/workers_snapshot.hpp"
 
 namespace frontsteal {
 
@@ -189,6 +193,25 @@ class StealingWorkers {
   ThiefHandle& thief(WorkerId w) noexcept { return workers_[w]->thief; }
   Slot& slot(WorkerId w) noexcept { return *slots_[w]; }
   ActiveWorkers<Backend, Policy>& active() noexcept { return active_; }
+
+  // ---- diagnostics (any thread, any time) --------------------------------------------------------------
+  // Every worker's Front, End, ListTransient and LockList, the active count and the frame counters, read
+  // with relaxed atomic loads (Access::peek): no labelled site, no order, no fence, so taking a snapshot does
+  // not change the protocol it observes. Racy by design and not one consistent cut (workers_snapshot.hpp);
+  // for watchdogs (core/watchdog.hpp) and failure reports only. Needs a backend with peek (std, chaos).
+  WorkersSnapshot debug_state() const {
+    WorkersSnapshot s;
+    s.workers.reserve(worker_count_);
+    for (const auto& slot : slots_) {
+      s.workers.push_back({A::peek(slot->front), A::peek(slot->end), A::peek(slot->transient),
+                           slot->lock.debug_held()});
+    }
+    s.active = active_.debug_count();
+    s.started = A::peek(started_);
+    s.done = A::peek(done_);
+    s.arrivals = A::peek(arrivals_);
+    return s;
+  }
 
  private:
   using A = Access<Backend, Policy>;

@@ -93,6 +93,15 @@ struct StdBackend {
   static T read(const Cell<T>& c, Where) noexcept {
     return c.value;
   }
+
+  // A diagnostic read (a watchdog's snapshot), not a protocol site: relaxed, so it orders nothing and adds no
+  // fence; atomic, so ThreadSanitizer sees no race. Derived backends inherit it unchanged: a snapshot must not
+  // inject chaos or otherwise perturb the run it describes. Backends whose threads are not std::threads
+  // (Relacy) do not provide it; nothing in the protocol calls it.
+  template <class T>
+  static T peek(const Atomic<T>& a) noexcept {
+    return a.load(std::memory_order::relaxed);
+  }
   template <class T>
   static void write(Cell<T>& c, T v, Where) noexcept {
     c.value = v;

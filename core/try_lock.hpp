@@ -33,6 +33,9 @@ class TryLock {
     for (std::uint32_t spins = 0; !try_lock(); ++spins) Backend::spin_pause(Site::kLockProbe, spins);
   }
 
+  // Diagnostics only (StealingWorkers::debug_state): whether someone held the lock at some recent moment.
+  [[nodiscard]] bool debug_held() const noexcept { return A::peek(held_) != 0u; }
+
   void unlock() noexcept { A::template store<Site::kLockRelease>(held_, std::uint32_t{0}); }  // L3
 
  private:
