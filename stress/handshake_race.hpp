@@ -12,11 +12,14 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "core/frame_loop.hpp"
 #include "core/std_backend.hpp"
+#include "core/watchdog.hpp"
 
 namespace frontsteal::stress {
 
@@ -62,6 +65,21 @@ HandshakeRaceResult race_handshake(std::uint64_t rounds, ItemId items, std::uint
     }
   });
 
+  // No frames here, so the watchdog's default probe (busy while a frame is in flight) does not apply: the race
+  // is always busy, and its progress is the slot's state plus the rounds both sides have finished. A thief
+  // stuck at T4 freezes both.
+  const Watchdog dog(
+      std::string("frontsteal-stress --rates: handshake race, ") + std::string(Policy::kName),
+      [&] {
+        return WatchdogSample{true, core.debug_state().fingerprint() ^ (go.load(std::memory_order::relaxed) << 20) ^
+                                        done.load(std::memory_order::relaxed)};
+      },
+      [&](std::FILE* out) {
+        std::fprintf(out, "  round %llu released, %llu finished by the thief (worker 0 owns, worker 1 steals)\n",
+                     static_cast<unsigned long long>(go.load(std::memory_order::relaxed)),
+                     static_cast<unsigned long long>(done.load(std::memory_order::relaxed)));
+        core.debug_state().print(out);
+      });
   std::vector<std::uint8_t> claimed(items, 0);
   const auto start = std::chrono::steady_clock::now();
   for (std::uint64_t round = 1; round <= rounds; ++round) {

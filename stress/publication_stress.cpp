@@ -32,6 +32,7 @@
 #include "core/policies.hpp"
 #include "core/publication_policies.hpp"
 #include "core/stealing_scheduler.hpp"
+#include "core/watchdog.hpp"
 #include "stress/chaos_backend.hpp"
 
 using namespace frontsteal;
@@ -170,6 +171,9 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
 
   {
     StealingScheduler<Fenced, ChaosBackend> scheduler({.workers = threads, .items = surfaces, .seed = o.seed});
+    // A frame that stops moving ends the run with every worker's state (core/watchdog.hpp), not a ctest timeout.
+    const Watchdog dog = watch_workers(scheduler, "frontsteal-stress-publication: " + r.policy + ", P=" +
+                                                      std::to_string(threads) + ", slots=" + std::to_string(slots));
     const auto start = std::chrono::steady_clock::now();
     const auto deadline = start + std::chrono::duration<double>(negative_control ? o.control_seconds : o.seconds);
     while (std::chrono::steady_clock::now() < deadline &&

@@ -6,16 +6,20 @@
 // --scenarios`, under ThreadSanitizer and chaos). The thread roles mirror ProtocolSuite: each worker runs
 // its frames; with `with_caller`, one more thread releases the frames, waits for them and reads every
 // worker's statistics, as StealingScheduler does.
+// Every run is watched (core/watchdog.hpp): a scenario whose frame stops moving ends the process with each
+// worker's state, naming the scenario and the policy, instead of hanging the test or the stress tier.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "core/execution_counter.hpp"
 #include "core/frame_loop.hpp"
+#include "core/watchdog.hpp"
 #include "models_check/scenarios.hpp"
 
 namespace frontsteal::stress {
@@ -30,6 +34,8 @@ ExecutionAudit run_scenario_on_threads(const model::ScenarioSpec& spec, std::uin
   const ItemId cells = static_cast<ItemId>(spec.items * spec.frames);
   ExecutionCounter runs(cells);
   if (!spec.with_caller) core.release_frame(spec.frames);
+  const Watchdog dog = watch_workers(core, "scenario " + std::string(spec.name) + " (policy " +
+                                               std::string(Policy::kName) + ", seed " + std::to_string(seed) + ")");
 
   std::vector<std::thread> threads;
   for (WorkerId w = 0; w < spec.workers; ++w) {

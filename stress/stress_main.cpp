@@ -23,6 +23,7 @@
 #include "core/cli_args.hpp"
 #include "core/execution_counter.hpp"
 #include "core/synthetic_work.hpp"
+#include "core/watchdog.hpp"
 #include "models_check/table_policy.hpp"
 #include "stress/chaos_backend.hpp"
 #include "stress/handshake_race.hpp"
@@ -290,6 +291,7 @@ FaultResult fault_stall(const Options& o) {
   const WorkerId p = 3;
   const ItemId n = 3000;
   StealingScheduler<Fenced, ChaosBackend> s({.workers = p, .items = n, .seed = o.seed});
+  const Watchdog dog = watch_workers(s, "frontsteal-stress: fault stall");
   s.reseed({{{0, 2700}}, {{2700, 2850}}, {{2850, 3000}}});  // worker 0 holds 90%
   ExecutionCounter runs(n);
   const auto stall = std::chrono::milliseconds(40);
@@ -310,6 +312,7 @@ FaultResult fault_stall(const Options& o) {
 FaultResult fault_throw(const Options& o) {
   const ItemId n = 500;
   StealingScheduler<Fenced, ChaosBackend> s({.workers = 3, .items = n, .seed = o.seed});
+  const Watchdog dog = watch_workers(s, "frontsteal-stress: fault throw");
   ExecutionCounter runs(n);
   std::ostringstream d;
   bool ok = false;
@@ -335,6 +338,7 @@ FaultResult fault_edges(const Options& o) {
   bool ok = true;
   for (auto [p, n] : {std::pair<WorkerId, ItemId>{1, 200}, {8, 3}, {4, 0}}) {
     StealingScheduler<Fenced, ChaosBackend> s({.workers = p, .items = n, .seed = o.seed});
+    const Watchdog dog = watch_workers(s, "frontsteal-stress: fault edges, P=" + std::to_string(p) + " N=" + std::to_string(n));
     ExecutionCounter runs(n);
     std::uint64_t bad = 0;
     for (int f = 0; f < 300; ++f) {

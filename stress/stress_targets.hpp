@@ -17,6 +17,7 @@
 #include "core/policies.hpp"
 #include "core/stealing_scheduler.hpp"
 #include "core/synthetic_work.hpp"
+#include "core/watchdog.hpp"
 #include "models_check/table_policy.hpp"
 #include "stress/chaos_backend.hpp"
 #include "schedulers/registry.hpp"
@@ -35,16 +36,21 @@ class StressTarget {
   virtual void reseed(const std::vector<RangeList>& lists) = 0;
 };
 
+// The stealing scheduler under a watchdog (core/watchdog.hpp): a case whose frame stops moving ends the run
+// with every worker's state instead of hanging the stress tier until ctest's timeout.
 template <class Policy, class Backend>
 class StealingTarget final : public StressTarget {
  public:
   StealingTarget(WorkerId workers, ItemId items, std::uint64_t seed)
-      : scheduler_({.workers = workers, .items = items, .seed = seed}) {}
+      : scheduler_({.workers = workers, .items = items, .seed = seed}),
+        watchdog_(watch_workers(scheduler_, "frontsteal-stress: stealing/" + std::string(Policy::kName) + ", P=" +
+                                                std::to_string(workers) + ", " + std::to_string(items) + " items")) {}
   const FrameStats& run_frame(const ItemFunction& process) override { return scheduler_.run_frame(process); }
   void reseed(const std::vector<RangeList>& lists) override { scheduler_.reseed(lists); }
 
  private:
   StealingScheduler<Policy, Backend> scheduler_;
+  Watchdog watchdog_;  // after scheduler_: destroyed first, so it never probes a scheduler being torn down
 };
 
 struct TargetInfo {
