@@ -57,6 +57,8 @@ enum class Defect : std::uint8_t {
   kTakeLastWithoutCas = 1 << 5,   // the owner keeps the last element without racing thieves for it (no K6)
   // The steal's share copy (stealing_protocol.hpp, plan_share):
   kShareLowerBound = 1 << 6,      // every copied entry starts at mid, not at max(mid, entry start)
+  // Progress (a hang, caught by core/watchdog.hpp):
+  kOwnerNeverRetracts = 1 << 7,   // owner raises ListTransient (O1) but never lowers it (drops O4)
 };
 
 constexpr Defect operator|(Defect a, Defect b) noexcept {

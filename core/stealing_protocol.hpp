@@ -66,6 +66,9 @@
 //   Owner: wait-free (I6). Thief: blocking at T4. A thief waits for ListTransient to fall, so it starves
 //   while the victim is preempted between O1 and O4 (paper §4.2.2: "p_i is prone to starvation"). Other
 //   thieves of the same victim wait behind it only in the sense that their try_lock fails and they move on.
+//   A ListTransient that is never lowered would keep a thief at T4 forever, holding the victim's LockList:
+//   every real-thread test and stress run is watched for exactly that kind of hang (core/watchdog.hpp; its
+//   negative control is Broken:NeverRetracts).
 //
 // CHECKED BY
 //   tests/core/stealing_protocol_test.cpp (deterministic step-by-step interleavings, real threads),
@@ -171,7 +174,8 @@ class Owner {
   using A = Access<Backend, Policy>;
 
   void retract() noexcept {
-    if (!has(Policy::defects(), Defect::kOwnerSkipsTransient)) {
+    // kOwnerNeverRetracts (negative control only) leaves ListTransient raised: a thief hangs at T4.
+    if (!has(Policy::defects(), Defect::kOwnerSkipsTransient | Defect::kOwnerNeverRetracts)) {
       A::template store<Site::kOwnerRetract>(slot_.transient, std::uint32_t{0});  // O4
     }
   }

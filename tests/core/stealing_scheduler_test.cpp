@@ -15,6 +15,7 @@
 #include "core/negative_controls.hpp"
 #include "core/policies.hpp"
 #include "core/synthetic_work.hpp"
+#include "core/watchdog.hpp"
 
 namespace fs = frontsteal;
 using fs::ItemId;
@@ -34,6 +35,15 @@ bool policy_usable() {
     }
   }
   return true;
+}
+
+// Every real-thread test here runs under a watchdog (core/watchdog.hpp): a frame that stops moving fails the
+// test binary within seconds, naming the test and printing each worker's state, instead of waiting for ctest's
+// timeout. A stall (no claim, steal or frame boundary) is what counts, not total time, so slow runs are fine.
+template <class Scheduler>
+fs::Watchdog watched(const Scheduler& scheduler, fs::WatchdogOptions options = {}) {
+  return fs::watch_workers(scheduler, "core_stealing_scheduler_test: " + Catch::getResultCapture().getCurrentTestName(),
+                           options);
 }
 
 // Skewed, changing costs: a hot window of N/8 items costs 40x the rest, and it moves every frame (the
@@ -76,6 +86,7 @@ struct RunSummary {
 template <class Policy, class Backend = fs::StdBackend>
 RunSummary run_frames(WorkerId workers, ItemId items, std::uint32_t frames, std::uint32_t cost_scale = 1) {
   fs::StealingScheduler<Policy, Backend> scheduler({.workers = workers, .items = items, .seed = 42});
+  const auto dog = watched(scheduler);
   fs::ExecutionCounter runs(items);
   RunSummary sum;
   for (std::uint32_t f = 1; f <= frames; ++f) {
@@ -147,6 +158,7 @@ TEMPLATE_TEST_CASE("negative controls on real threads: the audit catches the dup
   // Frames of 64 cheap items with widened windows, until a duplicate is seen. How many frames that takes
   // depends on the machine's load, so the bound (60 s) is only there to end the test if the audit is blind.
   fs::StealingScheduler<TestType, WideWindowBackend> scheduler({.workers = 2, .items = 64, .seed = 3});
+  const auto dog = watched(scheduler);
   fs::ExecutionCounter runs(64);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   std::uint64_t frames = 0;
@@ -171,6 +183,7 @@ TEST_CASE("edge sizes: one worker, more workers than items, empty frames", "[cor
   CHECK(few.lost_items == 0);
   CHECK(few.duplicated_items == 0);
   fs::StealingScheduler<fs::Fenced> empty({.workers = 3, .items = 0});
+  const auto dog = watched(empty);
   for (int f = 0; f < 20; ++f) {
     const auto& st = empty.run_frame([](ItemId, WorkerId) { FAIL("no item exists"); });
     CHECK(st.totals().items_processed == 0);
@@ -180,6 +193,7 @@ TEST_CASE("edge sizes: one worker, more workers than items, empty frames", "[cor
 TEST_CASE("an item that throws: the frame completes, the caller gets the item id, the next frame runs", "[core][scheduler]") {
   const ItemId n = 500;
   fs::StealingScheduler<fs::Fenced> scheduler({.workers = 3, .items = n});
+  const auto dog = watched(scheduler);
   fs::ExecutionCounter runs(n);
   try {
     scheduler.run_frame([&](ItemId id, WorkerId) {
@@ -203,6 +217,7 @@ TEST_CASE("the next frame starts from the lists each worker processed (temporal 
   const ItemId n = 2000;
   const WorkerId p = 3;
   fs::StealingScheduler<fs::Fenced> scheduler({.workers = p, .items = n});
+  const auto dog = watched(scheduler);
   for (std::uint32_t f = 1; f <= 10; ++f) {
     std::vector<RangeList> processed(p);  // each worker appends only to its own list
     scheduler.run_frame([&](ItemId id, WorkerId w) {
@@ -217,6 +232,7 @@ TEST_CASE("the next frame starts from the lists each worker processed (temporal 
 TEST_CASE("reseed installs a static allocation and rejects one that is not a partition", "[core][scheduler]") {
   const ItemId n = 12;
   fs::StealingScheduler<fs::Fenced> scheduler({.workers = 2, .items = n});
+  const auto dog = watched(scheduler);
   const std::vector<RangeList> round_robin{{{0, 1}, {2, 3}, {4, 5}, {6, 7}, {8, 9}, {10, 11}},
                                            {{1, 2}, {3, 4}, {5, 6}, {7, 8}, {9, 10}, {11, 12}}};
   scheduler.reseed(round_robin);
@@ -227,4 +243,52 @@ TEST_CASE("reseed installs a static allocation and rejects one that is not a par
   fs::ExecutionCounter runs(n);
   scheduler.run_frame([&](ItemId id, WorkerId) { runs.record(id); });
   CHECK(runs.audit_and_reset().exactly_once());
+}
+
+namespace {
+
+// One frame in which worker 1 certainly steals from worker 0 while worker 0 is inside a claimed item, whatever
+// the timing. Worker 0 holds items [0, 16), worker 1 the single item 16. Worker 1's item does not finish until
+// worker 0 is processing item 0 (so worker 0 has announced and claimed: O1, O3), and worker 0's item 0 does not
+// finish until worker 1 has lowered worker 0's End (T3). Under a sound policy the frame then completes; under
+// Broken:NeverRetracts worker 0's ListTransient stays raised, so the thief waits at T4 forever, holding worker
+// 0's LockList and counted as active, and worker 0, out of items, looks for work that never comes.
+template <class Policy>
+fs::ExecutionAudit run_forced_steal(fs::WatchdogOptions options = {}) {
+  const ItemId owned = 16;
+  const ItemId n = owned + 1;
+  fs::StealingScheduler<Policy> scheduler({.workers = 2, .items = n});
+  scheduler.reseed({{{0, owned}}, {{owned, n}}});
+  const auto dog = watched(scheduler, options);
+  fs::ExecutionCounter runs(n);
+  std::atomic<bool> owner_inside_item_0{false};
+  scheduler.run_frame([&](ItemId id, WorkerId) {
+    runs.record(id);
+    if (id == 0) {
+      owner_inside_item_0.store(true, std::memory_order::release);
+      // A relaxed diagnostic read (debug_state): waits for the steal without taking part in the protocol.
+      while (scheduler.debug_state().workers[0].end == owned) std::this_thread::yield();
+    } else if (id == owned) {
+      while (!owner_inside_item_0.load(std::memory_order::acquire)) std::this_thread::yield();
+    }
+  });
+  return runs.audit_and_reset();
+}
+
+}  // namespace
+
+TEST_CASE("a forced steal completes under a sound policy (the control of the planted hang)", "[core][scheduler][watchdog]") {
+  const fs::ExecutionAudit audit = run_forced_steal<fs::Fenced>();
+  INFO(audit);
+  CHECK(audit.exactly_once());
+}
+
+// The watchdog's negative control, hidden from the normal run ("[.]"): it must end the process with
+// kWatchdogExitCode and a report. tests/CMakeLists.txt runs it as core.watchdog_catches_planted_hang and checks
+// the exit code, the report's lines and the time it took.
+TEST_CASE("planted hang: the owner never retracts ListTransient and the watchdog ends the frame", "[.][watchdog-control]") {
+  fs::WatchdogOptions options;
+  options.stall_seconds = 2;  // short, and never reached by the sound control above (it finishes in ms)
+  (void)run_forced_steal<fs::BrokenNeverRetracts>(options);
+  FAIL("the planted hang did not hang: the frame completed");
 }
