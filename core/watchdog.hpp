@@ -22,14 +22,16 @@
 //                   stuck worker might hold and never change what they observe.
 //
 // INVARIANTS
-//   W1  Fires only while probe() reports busy, and only after stall_seconds of the same progress value in
-//       consecutive samples; any change restarts the clock. Idle (not busy) time never counts.
-//   W2  Firing is deterministic in outcome: the report is written and flushed, then std::_Exit with
+//   WD1  Fires only while probe() reports busy, and only after stall_seconds of the same progress value in
+//       consecutive samples; any change restarts the clock. Idle (not busy) time never counts, nor does a
+//       pause of the whole process (a gap between samples of half the bound or more restarts the clock).
+//       Progress is a claim, a steal or a frame boundary: one item running longer than the bound is a stall.
+//   WD2  Firing is deterministic in outcome: the report is written and flushed, then std::_Exit with
 //       kWatchdogExitCode (no destructors, no atexit handlers: the other threads are stuck and must not be
 //       joined). Tests assert on that exit code and on the "WATCHDOG:" line.
-//   W3  Overhead: registration is a mutex and a vector push; one probe per watch every 50 ms on the service
+//   WD3  Overhead: registration is a mutex and a vector push; one probe per watch every 50 ms on the service
 //       thread; nothing on the watched threads' paths. A process with no watch has no periodic wake-up.
-//   W4  Once ~Watchdog returns, its callbacks are never called again (the service probes under its mutex, and
+//   WD4  Once ~Watchdog returns, its callbacks are never called again (the service probes under its mutex, and
 //       removal takes it), so callbacks may capture references to objects that outlive the Watchdog only.
 #pragma once
 
@@ -80,7 +82,7 @@ struct WatchdogSample {
   std::uint64_t progress = 0;  // any value that changes while the work advances (a counter, a fingerprint)
 };
 
-// An RAII registration with the process's one watchdog thread (W3): constructing one is a mutex and a vector
+// An RAII registration with the process's one watchdog thread (WD3): constructing one is a mutex and a vector
 // push, not a thread start, so harnesses that run thousands of short scenarios can watch every one of them
 // (starting a thread per run measurably slowed them on a loaded 2-core machine).
 class Watchdog {
@@ -94,7 +96,7 @@ class Watchdog {
   }
   Watchdog(const Watchdog&) = delete;
   Watchdog& operator=(const Watchdog&) = delete;
-  // After this returns the service never calls this watch's probe or report again (W4).
+  // After this returns the service never calls this watch's probe or report again (WD4).
   ~Watchdog() { Service::instance().remove(this); }
 
   double stall_seconds() const noexcept { return options_.stall_seconds; }
@@ -104,7 +106,7 @@ class Watchdog {
   static constexpr std::chrono::milliseconds kPoll{50};
 
   // The one polling thread, started on first use and joined at static destruction. It holds its mutex while
-  // it probes, which is what makes W4 hold: remove() waits for a probe in progress.
+  // it probes, which is what makes WD4 hold: remove() waits for a probe in progress.
   class Service {
    public:
     static Service& instance() {
@@ -155,7 +157,14 @@ class Watchdog {
   // Called by the service thread only, under its mutex.
   void sample(Clock::time_point now) {
     const WatchdogSample s = probe_();
-    if (!s.busy || !had_sample_ || s.progress != last_) {  // W1: idle, first sample, or progress
+    // WD1: a gap between two samples of half the stall bound or more means the whole process (this thread
+    // included) was not running — SIGSTOP, CPU throttling, a starved machine. The workers were paused with it,
+    // so the gap is not their stall: the clock restarts. (Half the bound, not a few poll periods: on a loaded
+    // machine this thread is often late by hundreds of milliseconds, and that must not hide a real hang.)
+    const bool paused = had_sample_ && std::chrono::duration<double>(now - last_sample_at_).count() >=
+                                           options_.stall_seconds / 2;
+    last_sample_at_ = now;
+    if (!s.busy || !had_sample_ || paused || s.progress != last_) {  // WD1: idle, first sample, pause, or progress
       had_sample_ = s.busy;
       last_ = s.progress;
       since_ = now;
@@ -172,7 +181,7 @@ class Watchdog {
     std::fprintf(stderr, "WATCHDOG: ending the process (exit code %d) instead of hanging until a timeout\n",
                  kWatchdogExitCode);
     std::fflush(stderr);
-    std::_Exit(kWatchdogExitCode);  // W2
+    std::_Exit(kWatchdogExitCode);  // WD2
   }
 
   const std::string name_;
@@ -183,6 +192,7 @@ class Watchdog {
   bool had_sample_ = false;
   std::uint64_t last_ = 0;
   Clock::time_point since_{};
+  Clock::time_point last_sample_at_{};  // the service's previous sample of this watch (WD1: pauses)
 };
 
 // A watchdog over anything with debug_state() returning a WorkersSnapshot-like value (frame_in_flight(),

@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
      << " per policy and scenario; tree searches under the spin bound (each wait fails at most once, frame-long "
         "waits twice; longer executions are discarded, models_check/relacy_backend.hpp). Scenarios (models_check/publication_scenarios.hpp):\n\n";
   for (const PublicationSpec& s : publication_scenarios()) md << "- `" << s.name << "`: " << s.checks << "\n";
-  md << "\n## Verdicts\n\n| policy | expected | verdict | executions |\n|---|---|---|---|\n";
+  md << "\n## Verdicts\n\n| policy | expected | verdict | executions explored (random + tree, discarded included) |\n|---|---|---|---|\n";
   js << "{\n  \"verdicts\": [\n";
 
   struct Row {

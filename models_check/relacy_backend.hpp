@@ -19,9 +19,11 @@
 // SPIN BOUND ("spin-assume", as stateless model checkers such as GenMC treat await loops)
 //   Every wait and poll of the protocol reaches this backend through one of two hooks: spin_pause(site, n)
 //   after the n+1-th failed iteration of a loop (T4 await ListTransient, A3 idle-round poll, L1/L2 owner's
-//   lock_spinning), and wait_while_equal (E2/E6 frame waits). With SpinBound::k = K > 0 a loop may fail K
+//   lock_spinning; D1, the publication driver's wait for the pusher), and wait_while_equal (E2/E6 frame
+//   waits); the publication harness's own frame waits call failed_iteration directly (publication_suite.cpp). With SpinBound::k = K > 0 a loop may fail K
 //   times; the execution in which it would fail a K+1-th time is DISCARDED: the thread leaves its body at
-//   once (longjmp to ProtocolSuite::thread, which set the landing point), every other thread leaves at its
+//   once (longjmp to the suite's thread(), which set the landing point: ProtocolSuite, PublicationSuite,
+//   ChaseLevSuite), every other thread leaves at its
 //   next backend call, and the harness skips the end-of-execution checks and counts the execution as
 //   discarded. A discarded execution's prefix is still a real execution prefix: a failure Relacy reports in
 //   it (a duplicate, a data race) is real.
@@ -70,7 +72,7 @@ struct Boxed {
 };
 
 // The spin bound's state: one per process. Relacy runs every thread of an execution on fibers of one OS
-// thread, so plain globals are coherent with the interleaving; ProtocolSuite::before() re-arms it.
+// thread, so plain globals are coherent with the interleaving; every suite's before() re-arms it.
 struct SpinBound {
   static constexpr unsigned kMaxThreads = 8;
   unsigned k = 0;          // failed iterations allowed per wait; 0: unbounded (random search)
