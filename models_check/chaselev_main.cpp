@@ -14,6 +14,7 @@
 
 #include "core/chase_lev_policies.hpp"
 #include "core/cli_args.hpp"
+#include "models_check/report_text.hpp"
 #include "models_check/chaselev_check.hpp"
 #include "models_check/table_policy.hpp"
 
@@ -92,15 +93,6 @@ Options parse(int argc, char** argv) {
     }
   }
   return o;
-}
-
-std::string json_escape(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out;
 }
 
 std::string seconds_text(double s) {

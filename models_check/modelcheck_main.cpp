@@ -21,6 +21,7 @@
 #include "core/cli_args.hpp"
 #include "core/negative_controls.hpp"
 #include "core/policies.hpp"
+#include "models_check/report_text.hpp"
 #include "models_check/expected_verdicts.hpp"
 #include "models_check/scenarios.hpp"
 #include "models_check/search.hpp"
@@ -241,29 +242,6 @@ std::vector<const ScenarioSpec*> chosen_scenarios(const Options& o) {
       out.push_back(&s);
     }
   }
-  return out;
-}
-
-std::string json_escape(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out;
-}
-
-// "100000 it" for a random search; "N done + M discarded" for a tree search (with "capped" if it hit the cap,
-// "until failure" if it stopped at a failing execution).
-std::string search_summary(const SearchResult& r) {
-  if (r.spin_bound == 0) return std::to_string(r.iterations) + " it" + (r.capped ? " (capped)" : "");
-  std::string out = std::to_string(r.completed) + " done + " + std::to_string(r.discarded) + " discarded";
-  if (r.capped) out += " (capped)";
-  if (r.verdict != Verdict::kPass) out += " (stopped at execution " + std::to_string(r.iterations) + ")";
   return out;
 }
 

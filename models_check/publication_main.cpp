@@ -13,6 +13,7 @@
 
 #include "core/cli_args.hpp"
 #include "core/publication_policies.hpp"
+#include "models_check/report_text.hpp"
 #include "models_check/publication_check.hpp"
 #include "models_check/table_policy.hpp"
 
@@ -98,15 +99,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-std::string json_escape(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out;
-}
-
 // One search of one table on one scenario, as run.
 struct Cell {
   std::string scenario;
@@ -162,15 +154,6 @@ Outcome check_table(const PolicyTable& table, std::uint64_t iterations, unsigned
     }
   }
   return o;
-}
-
-// "100000 it" for a random search; "N done + M discarded" for a tree search, which ran to completion.
-std::string search_summary(const SearchResult& r) {
-  if (r.spin_bound == 0) return std::to_string(r.iterations) + " it";
-  std::string out = std::to_string(r.completed) + " done + " + std::to_string(r.discarded) + " discarded";
-  if (r.capped) out += " (capped)";
-  if (r.verdict != Verdict::kPass) out += " (stopped at execution " + std::to_string(r.iterations) + ")";
-  return out;
 }
 
 std::string describe(const Outcome& o) {
