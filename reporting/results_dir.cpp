@@ -1,0 +1,51 @@
+// results_dir.cpp — ResultsDir and the common JSON header.
+#include "reporting/results_dir.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+#include <system_error>
+
+namespace frontsteal::report {
+
+Json document(std::string_view program, int schema_version, std::string_view kind, std::string_view commit) {
+  Json doc = Json::object();
+  doc["schema_version"] = schema_version;
+  doc["program"] = program;
+  doc["kind"] = kind;
+  doc["commit"] = commit;
+  return doc;
+}
+
+ResultsDir::ResultsDir(std::string program, std::filesystem::path dir) : program_(std::move(program)), dir_(std::move(dir)) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir_, ec);
+  if (ec) throw std::runtime_error("cannot create " + dir_.string() + ": " + ec.message());
+}
+
+void ResultsDir::write(std::string_view name, std::string_view text) const {
+  const std::filesystem::path p = file(name);
+  std::ofstream out(p, std::ios::binary);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + p.string());
+}
+
+void ResultsDir::write_json(std::string_view name, const Json& doc) const { write(name, doc.dump(2) + "\n"); }
+
+bool ResultsDir::plot(std::string_view script) const {
+  // Quoted for the shell: directory names with spaces or quotes must not break (or inject into) the command.
+  auto quote = [](const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  };
+  const std::string command = "cd " + quote(dir_.string()) + " && gnuplot " + quote(std::string(script));
+  if (std::system(command.c_str()) == 0) return true;
+  std::cerr << program_ << ": gnuplot failed or is missing (apt-get install gnuplot-nox); " << file(script).string()
+            << " is written\n";
+  return false;
+}
+
+}  // namespace frontsteal::report
