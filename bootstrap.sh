@@ -27,6 +27,8 @@ packages=(
   # also name libtbb.so), and the real STEP/IGES/BREP files its test reads (never committed)
   libocct-data-exchange-dev libocct-modeling-algorithms-dev libtbb-dev
   occt-misc calculix-cgx-examples gmsh-doc
+  # every executable's options (CLI11) and results files (nlohmann-json): reporting/
+  libcli11-dev nlohmann-json3-dev
   # the main job's plots (schedulers/frontsteal_main.cpp writes a gnuplot script and runs it); oneTBB is
   # listed above (libtbb-dev), OpenMP comes with g++ (libgomp)
   gnuplot-nox
