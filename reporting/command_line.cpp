@@ -25,7 +25,7 @@ class WrappingFormatter : public CLI::Formatter {
     std::string text = opt->get_description();
     const std::string full_type = opt->get_type_name();
     if (const auto colon = full_type.find(':'); colon != std::string::npos) text += " (" + full_type.substr(colon + 1) + ")";
-    if (!full_type.empty() && !opt->get_default_str().empty()) text += " [default " + opt->get_default_str() + "]";
+    if (!full_type.empty() && !opt->get_default_str().empty() && opt->get_default_str() != "[]") text += " [default " + opt->get_default_str() + "]";
     return wrap(text, 78 - get_column_width());
   }
 

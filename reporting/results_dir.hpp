@@ -18,6 +18,10 @@ namespace frontsteal::report {
 // The common header of every results file: {schema_version, program, kind, commit}.
 Json document(std::string_view program, int schema_version, std::string_view kind, std::string_view commit);
 
+// Writes `text` to `path` through a temporary file renamed into place, so a failed run leaves no half-written
+// file; throws std::runtime_error naming the file when it cannot.
+void write_atomically(const std::filesystem::path& path, std::string_view text);
+
 class ResultsDir {
  public:
   // Creates `dir` (and its parents); throws std::runtime_error naming it when that fails.

@@ -15,7 +15,13 @@
 #include <utility>
 #include <vector>
 
-#include "core/cli_args.hpp"
+#ifndef FRONTSTEAL_GIT_COMMIT
+#define FRONTSTEAL_GIT_COMMIT "unknown"
+#endif
+
+#include "reporting/command_line.hpp"
+#include "reporting/results_dir.hpp"
+#include "reporting/table.hpp"
 #include "tessellate/isolated_import.hpp"
 #include "tessellate/model_format.hpp"
 #include "tessellate/occt_import.hpp"
@@ -24,21 +30,11 @@ namespace {
 
 namespace tess = frontsteal::tess;
 namespace fsys = std::filesystem;
+namespace report = frontsteal::report;
 
-constexpr std::string_view kProgram = "frontsteal-import";
-constexpr std::string_view kUsage = R"(frontsteal-import — CAD files (STEP, IGES, BREP) into a frontsteal model, through Open CASCADE.
-
-Usage: frontsteal-import IN [IN...] -o OUT.fsm [--report REPORT.json] [--samples N] [--time-limit S]
-                         [--memory-limit MB]
-
-  IN                  .step/.stp, .iges/.igs or .brep files (chosen by extension, any case)
-  -o, --output FILE   the model to write (native format: tessellate/model_format.hpp)
-  --report FILE       also write the per-file reports as JSON
-  --samples N         trim-curve samples per knot span of a p-curve (default 8, 1..1000)
-  --time-limit S      seconds one file's reader may run (default 30)
-  --memory-limit MB   resident memory one file's reader may use, MiB (default 4096)
-  -h, --help          this text
-
+constexpr const char* kProgram = "frontsteal-import";
+constexpr const char* kDescription = "frontsteal-import — CAD files (STEP, IGES, BREP) into a frontsteal model, through Open CASCADE.";
+constexpr const char* kFooter = R"(
 Every face is converted to B-splines (BRepBuilderAPI_NurbsConvert), split at its knots into rational Bézier
 patches (degree <= 7 each way; higher-degree faces are skipped), and its trim loops (the wires' p-curves,
 sampled to polylines) are cut along the patch grid, so each patch gets its own loops in [0,1]². Every surface
@@ -49,8 +45,7 @@ Each file is read in a child process under the time and memory limits (Open CASC
 run forever on hostile files): a reader that crashes, runs out of time or memory, or fails is reported with
 the file and the cause, and nothing is written. A file that looks cut short (no STEP trailer, no IGES
 terminate section) is imported with a warning.
-Exit status: 0 on success, 1 when an input cannot be read or the output cannot be written, 2 for bad usage.
-)";
+Exit status: 0 on success, 1 when an input cannot be read or the output cannot be written, 2 for bad usage.)";
 
 struct Options {
   std::vector<std::string> inputs;
@@ -60,56 +55,21 @@ struct Options {
   tess::IsolationLimits limits;
 };
 
-[[noreturn]] void usage_error(const std::string& message) { frontsteal::cli::usage_error(kProgram, message); }
-
 Options parse(int argc, char** argv) {
   Options o;
-  frontsteal::cli::ArgReader args(argc, argv, kProgram, kUsage);
-  while (args.next()) {
-    const std::string_view arg = args.flag();
-    if (arg == "-o" || arg == "--output") {
-      if (!o.output.empty()) usage_error("the output is given twice");
-      o.output = args.value();
-      if (o.output.empty()) usage_error(std::string(arg) + " needs a file name");
-    } else if (arg == "--report") {
-      o.report = args.value();
-      if (o.report.empty()) usage_error("--report needs a file name");
-    } else if (arg == "--samples") {
-      o.samples = frontsteal::cli::parse_number<int>(kProgram, arg, args.value(), 1, 1000);
-    } else if (arg == "--time-limit") {
-      o.limits.time_limit_s = frontsteal::cli::parse_number<double>(kProgram, arg, args.value(), 0.1, 86400.0);
-    } else if (arg == "--memory-limit") {
-      o.limits.memory_limit_mb = frontsteal::cli::parse_number<double>(kProgram, arg, args.value(), 16.0, 1e7);
-    } else if (arg.size() > 1 && arg[0] == '-') {
-      usage_error("unknown option '" + std::string(arg) + "'");
-    } else {
-      o.inputs.emplace_back(arg);
-    }
-  }
-  if (o.inputs.empty()) usage_error("no input file (give one or more .step/.stp/.iges/.igs/.brep files)");
-  if (o.output.empty()) usage_error("no output file (-o OUT.fsm)");
+  report::CommandLine cli(kProgram, kDescription, kFooter);
+  cli.app().add_option("IN", o.inputs, ".step/.stp, .iges/.igs or .brep files (chosen by extension, any case)")
+      ->required();
+  cli.app().add_option("-o,--output", o.output, "the model to write (native format: tessellate/model_format.hpp)")
+      ->required()->check(CLI::Validator([](std::string& f) { return f.empty() ? "needs a file name" : ""; }, ""));
+  cli.option("--report", o.report, "also write the per-file reports as JSON")
+      ->check(CLI::Validator([](std::string& f) { return f.empty() ? "needs a file name" : ""; }, ""));
+  cli.option("--samples", o.samples, "trim-curve samples per knot span of a p-curve")->check(CLI::Range(1, 1000));
+  cli.option("--time-limit", o.limits.time_limit_s, "seconds one file's reader may run")->check(CLI::Range(0.1, 86400.0));
+  cli.option("--memory-limit", o.limits.memory_limit_mb, "resident memory one file's reader may use, MiB")
+      ->check(CLI::Range(16.0, 1e7));
+  cli.parse(argc, argv);
   return o;
-}
-
-std::string json_string(std::string_view s) {
-  std::ostringstream o;
-  o << '"';
-  for (const char c : s) {
-    switch (c) {
-      case '"': o << "\\\""; break;
-      case '\\': o << "\\\\"; break;
-      case '\n': o << "\\n"; break;
-      case '\t': o << "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          o << "\\u" << std::hex << std::setw(4) << std::setfill('0') << static_cast<int>(c) << std::dec;
-        } else {
-          o << c;
-        }
-    }
-  }
-  o << '"';
-  return o.str();
 }
 
 // Skips grouped by reason, most frequent first.
@@ -126,20 +86,20 @@ struct FileResult {
   double seconds = 0;
 };
 
-void print_table(const std::vector<FileResult>& results) {
-  std::size_t w = 4;
-  for (const FileResult& f : results) w = std::max(w, fsys::path(f.report.file).filename().string().size());
-  std::cout << std::left << std::setw(static_cast<int>(w)) << "file" << std::right << std::setw(8) << "faces"
-            << std::setw(10) << "imported" << std::setw(9) << "patches" << std::setw(10) << "surfaces" << std::setw(8)
-            << "loops" << std::setw(10) << "reorient" << std::setw(9) << "corners" << std::setw(9) << "skipped" << std::setw(9) << "seconds" << "\n";
+report::Table file_table(const std::vector<FileResult>& results) {
+  report::Table t({{"file", "file", false}, {"faces", "faces"}, {"faces_imported", "imported"}, {"patches", "patches"},
+                   {"surfaces", "surfaces"}, {"trim_loops", "loops"}, {"loops_reoriented", "reorient"},
+                   {"corner_loops_cut", "corners"}, {"skipped_count", "skipped"}, {"seconds", "seconds"}});
   for (const FileResult& f : results) {
     const tess::ImportReport& r = f.report;
-    std::cout << std::left << std::setw(static_cast<int>(w)) << fsys::path(r.file).filename().string() << std::right
-              << std::setw(8) << r.faces << std::setw(10) << r.faces_imported << std::setw(9) << r.patches
-              << std::setw(10) << r.surfaces << std::setw(8) << r.trim_loops << std::setw(10) << r.loops_reoriented
-              << std::setw(9) << r.corner_loops_cut << std::setw(9) << r.skipped.size() << std::setw(9) << std::fixed << std::setprecision(2) << f.seconds
-              << "\n";
+    t.add_row({fsys::path(r.file).filename().string(), r.faces, r.faces_imported, r.patches, r.surfaces, r.trim_loops,
+               r.loops_reoriented, r.corner_loops_cut, r.skipped.size(), report::Cell::fixed(f.seconds, 2)});
   }
+  return t;
+}
+
+void print_report(const std::vector<FileResult>& results) {
+  std::cout << file_table(results).terminal();
   for (const FileResult& f : results) {
     const auto groups = by_reason(f.report);
     if (groups.empty()) continue;
@@ -148,56 +108,26 @@ void print_table(const std::vector<FileResult>& results) {
   }
 }
 
-void write_report_json(std::ostream& o, const Options& opt, const std::vector<FileResult>& results, std::size_t surfaces) {
-  o << "{\n  \"output\": " << json_string(opt.output) << ",\n  \"samples_per_span\": " << opt.samples
-    << ",\n  \"surfaces\": " << surfaces << ",\n  \"files\": [";
+report::Json report_json(const Options& opt, const std::vector<FileResult>& results, std::size_t surfaces) {
+  report::Json doc = report::document(kProgram, 1, "import", FRONTSTEAL_GIT_COMMIT);
+  doc["output"] = opt.output;
+  doc["samples_per_span"] = opt.samples;
+  doc["surfaces"] = surfaces;
+  report::Json files = report::Json::array();
+  const report::Json rows = file_table(results).json();
   for (std::size_t i = 0; i < results.size(); ++i) {
     const tess::ImportReport& r = results[i].report;
-    o << (i ? "," : "") << "\n    {\"file\": " << json_string(r.file) << ", \"faces\": " << r.faces
-      << ", \"faces_imported\": " << r.faces_imported << ", \"patches\": " << r.patches << ", \"surfaces\": " << r.surfaces
-      << ", \"trim_loops\": " << r.trim_loops << ", \"loops_reoriented\": " << r.loops_reoriented
-      << ", \"corner_loops_cut\": " << r.corner_loops_cut << ", \"warnings\": [";
-    for (std::size_t k = 0; k < r.warnings.size(); ++k) o << (k ? ", " : "") << json_string(r.warnings[k]);
-    o << "]"
-      << ", \"seconds\": " << std::fixed << std::setprecision(3) << results[i].seconds << ",\n     \"skipped_by_reason\": [";
-    const auto groups = by_reason(r);
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-      o << (g ? ", " : "") << "{\"reason\": " << json_string(groups[g].first) << ", \"count\": " << groups[g].second << "}";
-    }
-    o << "],\n     \"skipped\": [";
-    for (std::size_t s = 0; s < r.skipped.size(); ++s) {
-      o << (s ? ", " : "") << "{\"face\": " << r.skipped[s].face << ", \"reason\": " << json_string(r.skipped[s].reason) << "}";
-    }
-    o << "]}";
+    report::Json f = rows[i];
+    f["file"] = r.file;  // the path as given, not only its name
+    f["warnings"] = r.warnings;
+    f["skipped_by_reason"] = report::Json::array();
+    for (const auto& [reason, count] : by_reason(r)) f["skipped_by_reason"].push_back({{"reason", reason}, {"count", count}});
+    f["skipped"] = report::Json::array();
+    for (const tess::ImportSkip& s : r.skipped) f["skipped"].push_back({{"face", s.face}, {"reason", s.reason}});
+    files.push_back(std::move(f));
   }
-  o << "\n  ]\n}\n";
-}
-
-// Writes through a temporary file and renames, so a failed run leaves no half-written output.
-bool write_file(const std::string& path, const std::string& what, const auto& write) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    if (!out) {
-      std::cerr << kProgram << ": error: cannot write the " << what << " '" << path << "'\n";
-      return false;
-    }
-    write(out);
-    out.flush();
-    if (!out) {
-      std::cerr << kProgram << ": error: writing the " << what << " '" << path << "' failed\n";
-      std::remove(tmp.c_str());
-      return false;
-    }
-  }
-  std::error_code ec;
-  fsys::rename(tmp, path, ec);
-  if (ec) {
-    std::cerr << kProgram << ": error: cannot move " << tmp << " to " << path << ": " << ec.message() << "\n";
-    std::remove(tmp.c_str());
-    return false;
-  }
-  return true;
+  doc["files"] = std::move(files);
+  return doc;
 }
 
 }  // namespace
@@ -239,14 +169,19 @@ int main(int argc, char** argv) {
     results.push_back(std::move(f));
   }
 
-  print_table(results);
-  if (!write_file(opt.output, "model", [&](std::ostream& o) { tess::write_model(o, model); })) return 1;
-  std::cerr << kProgram << ": wrote " << model.surfaces.size() << " surfaces to " << opt.output << "\n";
-  if (!opt.report.empty()) {
-    if (!write_file(opt.report, "report", [&](std::ostream& o) { write_report_json(o, opt, results, model.surfaces.size()); })) {
-      return 1;
+  print_report(results);
+  try {
+    std::ostringstream model_text;
+    tess::write_model(model_text, model);
+    report::write_atomically(opt.output, model_text.str());
+    std::cerr << kProgram << ": wrote " << model.surfaces.size() << " surfaces to " << opt.output << "\n";
+    if (!opt.report.empty()) {
+      report::write_atomically(opt.report, report_json(opt, results, model.surfaces.size()).dump(2) + "\n");
+      std::cerr << kProgram << ": wrote the report to " << opt.report << "\n";
     }
-    std::cerr << kProgram << ": wrote the report to " << opt.report << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << kProgram << ": error: " << e.what() << "\n";
+    return 1;
   }
   return 0;
 }
