@@ -20,66 +20,42 @@
 #include <thread>
 #include <vector>
 
-#include "core/cli_args.hpp"
 #include "core/execution_counter.hpp"
 #include "core/synthetic_work.hpp"
 #include "core/watchdog.hpp"
 #include "models_check/table_policy.hpp"
+#include "reporting/command_line.hpp"
+#include "reporting/results_dir.hpp"
+#include "reporting/table.hpp"
 #include "stress/chaos_backend.hpp"
 #include "stress/handshake_race.hpp"
 #include "stress/stress_targets.hpp"
 
+#ifndef FRONTSTEAL_GIT_COMMIT
+#define FRONTSTEAL_GIT_COMMIT "unknown"
+#endif
+
 namespace fs = frontsteal;
+namespace report = frontsteal::report;
 using namespace frontsteal;
 using namespace frontsteal::stress;
 
 namespace {
 
-constexpr std::string_view kProgram = "frontsteal-stress";
-
-[[noreturn]] void usage_error(const std::string& m) { cli::usage_error(kProgram, m); }
-
-template <class T>
-T parse_number(std::string_view flag, std::string_view text) {
-  return cli::parse_number<T>(kProgram, flag, text, std::numeric_limits<T>::lowest(), std::numeric_limits<T>::max());
-}
-
-using cli::split_list;
-
-constexpr std::string_view kUsage = R"(usage: frontsteal-stress [options]
-
-Runs the stealing protocol on real threads for many frames and audits every item of every frame (lost = 0
+constexpr const char* kProgram = "frontsteal-stress";
+constexpr const char* kDescription = R"(Runs the stealing protocol on real threads for many frames and audits every item of every frame (lost = 0
 always; duplicates = 0 for exactly-once policies, counted for at-least-once ones). Prints a histogram of
-outcomes per target and thread count, and writes markdown and JSON. Exits 1 on a lost item, a duplicate under
-an exactly-once policy, a negative control that was not caught, or a failed fault scenario.
-
-modes:
-  (default)          the bounded suite: every target x P in {2, 4, 8}, the model checker's scenarios on real
-                     threads (--scenario-runs each), then the fault scenarios
-  --rates            no chaos, no sanitizer expected (run it from the release build): the handshake raced
-                     head-on (--rounds rounds of --race-items items: duplicates per million rounds) and the
-                     frame-level duplicate rate per million items, for Paper, the exactly-once policies, and
-                     every one-step weakening of Fenced and Minimal
-
-options:
-  --seconds S        time per case (default 3; the suite stays within a few minutes under TSan)
-  --frames F         frames per case instead of a time bound (the slow tier uses 1e6 in total)
-  --control-seconds S  a negative control ignores --seconds and --frames: it runs until its planted defect
-                     is caught (the first duplicate), and fails only if S seconds pass first     (default 60)
-  --items N          items per frame (default 256)
-  --chaos R          chaos injections per million labelled accesses (default 2000; 0 disables)
-  --targets LIST     comma-separated target names (see --list), or all                 (default all)
-  --threads LIST     comma-separated thread counts                                     (default 2,4,8)
-  --seed S           seed of costs and chaos                                           (default 1)
-  --out DIR          results directory                                       (default out/stress)
-  --rounds R         handshake-race rounds per policy in --rates                (default 1000000)
-  --race-items K     items per handshake-race round                             (default 2)
-  --race-work W      owner's multiply-adds after each claimed item in a race round (default 50)
-  --scenario-runs N  runs of each model-checking scenario per target              (default 200)
-  --list             list the targets and exit
-  --quiet            no progress lines
-  --help             this text
-)";
+outcomes per target and thread count, and writes markdown and JSON (stress.{md,json}, or rates.{md,json}).
+Exits 1 on a lost item, a duplicate under an exactly-once policy, a negative control that was not caught,
+or a failed fault scenario; 2 for bad usage.)";
+constexpr const char* kFooter = R"(
+Modes:
+  (default)  the bounded suite: every target x P in --threads, the model checker's scenarios on real threads
+             (--scenario-runs each), then the fault scenarios
+  --rates    no chaos, no sanitizer expected (run it from the release build): the handshake raced head-on
+             (--rounds rounds of --race-items items: duplicates per million rounds) and the frame-level
+             duplicate rate per million items, for Paper, the exactly-once policies, and every one-step
+             weakening of Fenced and Minimal)";
 
 struct Options {
   double seconds = 3;
@@ -101,64 +77,37 @@ struct Options {
 
 Options parse(int argc, char** argv) {
   Options o;
-  cli::ArgReader args(argc, argv, kProgram, kUsage);
-  while (args.next()) {
-    const std::string_view a = args.flag();
-    auto value = [&] { return args.value(); };
-    if (a == "--list") {
-      for (const auto& t : targets()) {
-        std::cout << t.name << "  (" << name(t.contract) << (t.negative_control ? ", negative control" : "") << ")\n";
-      }
-      std::exit(0);
-    } else if (a == "--rates") {
-      o.rates = true;
-    } else if (a == "--scenario-runs") {
-      o.scenario_runs = parse_number<std::uint64_t>(a, value());
-    } else if (a == "--rounds") {
-      o.rounds = parse_number<std::uint64_t>(a, value());
-    } else if (a == "--race-items") {
-      o.race_items = parse_number<ItemId>(a, value());
-      if (o.race_items == 0) usage_error("--race-items must be at least 1");
-    } else if (a == "--race-work") {
-      o.race_work = parse_number<std::uint32_t>(a, value());
-    } else if (a == "--seconds") {
-      o.seconds = parse_number<double>(a, value());
-      if (!(o.seconds > 0)) usage_error("--seconds must be positive");
-    } else if (a == "--control-seconds") {
-      o.control_seconds = parse_number<double>(a, value());
-      if (!(o.control_seconds > 0)) usage_error("--control-seconds must be positive");
-    } else if (a == "--frames") {
-      o.frames = parse_number<std::uint64_t>(a, value());
-    } else if (a == "--items") {
-      o.items = parse_number<ItemId>(a, value());
-    } else if (a == "--chaos") {
-      o.chaos = parse_number<std::uint32_t>(a, value());
-      if (o.chaos > 1000000) usage_error("--chaos is per million, at most 1000000");
-    } else if (a == "--targets") {
-      o.targets = split_list(value());
-    } else if (a == "--threads") {
-      o.threads.clear();
-      for (const auto& t : split_list(value())) {
-        const auto p = parse_number<WorkerId>("--threads", t);
-        if (p == 0 || p > 256) usage_error("--threads entries must be between 1 and 256");
-        o.threads.push_back(p);
-      }
-    } else if (a == "--seed") {
-      o.seed = parse_number<std::uint64_t>(a, value());
-    } else if (a == "--out") {
-      o.out = value();
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else {
-      usage_error("unknown option '" + std::string(a) + "'");
+  report::CommandLine cli(kProgram, kDescription, kFooter);
+  cli.app().add_flag_callback("--list", [] {
+    for (const auto& t : targets()) {
+      std::cout << t.name << "  (" << name(t.contract) << (t.negative_control ? ", negative control" : "") << ")\n";
     }
-  }
-  const auto all = targets();
-  for (const auto& t : o.targets) {
-    if (t != "all" && std::none_of(all.begin(), all.end(), [&](const TargetInfo& x) { return x.name == t; })) {
-      usage_error("unknown target '" + t + "' (see --list)");
-    }
-  }
+    std::exit(0);
+  }, "list the targets and exit");
+  cli.flag("--rates", o.rates, "measure duplicate rates (see Modes)");
+  cli.option("--seconds", o.seconds, "time per case")->check(CLI::PositiveNumber);
+  cli.option("--frames", o.frames, "frames per case instead of a time bound (0: use --seconds)");
+  cli.option("--control-seconds", o.control_seconds, "a negative control ignores --seconds and --frames: it runs "
+             "until its planted defect is caught (the first duplicate), and fails only if this many seconds pass first")
+      ->check(CLI::PositiveNumber);
+  cli.option("--items", o.items, "items per frame");
+  cli.option("--chaos", o.chaos, "chaos injections per million labelled accesses (0 disables)")
+      ->check(CLI::Range(0u, 1000000u));
+  auto all = targets();
+  std::vector<std::string> names{"all"};
+  for (const auto& t : all) names.push_back(t.name);
+  cli.app().add_option("--targets", o.targets, "comma-separated target names (see --list), or all [default all]")
+      ->delimiter(',')->check(CLI::IsMember(names).description("a name from --list"));
+  cli.app().add_option("--threads", o.threads, "comma-separated thread counts")
+      ->delimiter(',')->check(CLI::Range(1u, 256u));
+  cli.seed(o.seed, "seed of costs and chaos");
+  cli.out(o.out);
+  cli.option("--rounds", o.rounds, "handshake-race rounds per policy in --rates");
+  cli.option("--race-items", o.race_items, "items per handshake-race round")->check(CLI::Range(1u, 1u << 30));
+  cli.option("--race-work", o.race_work, "owner's multiply-adds after each claimed item in a race round");
+  cli.option("--scenario-runs", o.scenario_runs, "runs of each model-checking scenario per target");
+  cli.quiet(o.quiet);
+  cli.parse(argc, argv);
   return o;
 }
 
@@ -351,93 +300,99 @@ FaultResult fault_edges(const Options& o) {
   return {"edges: P = 1, P > N, N = 0", ok, d.str()};
 }
 
-void write_results(const Options& o, const std::vector<CaseResult>& cases, const std::vector<FaultResult>& faults,
-                   const std::vector<RaceRow>& races, const std::vector<ScenarioRow>& scenario_rows, bool all_ok,
-                   double seconds) {
-  std::error_code ec;
-  std::filesystem::create_directories(o.out, ec);
-  if (ec) {
-    std::cerr << "frontsteal-stress: cannot create " << o.out << ": " << ec.message() << "\n";
-    std::exit(1);
+// Everything a run found: the frame-level cases, the handshake races (--rates), the scenarios and the faults.
+struct StressReport {
+  std::vector<CaseResult> cases;
+  std::vector<FaultResult> faults;
+  std::vector<RaceRow> races;
+  std::vector<ScenarioRow> scenario_rows;
+  bool all_ok = true;
+};
+
+report::Table race_table(const std::vector<RaceRow>& races, const Options& o) {
+  report::Table t({{"policy", "policy", false}, {"rounds", "rounds"}, {"items_per_round", "items per round"},
+                   {"steals_kept", "steals kept"}, {"skipped", "items skipped after re-read"},
+                   {"duplicates", "duplicates"}, {"rounds_with_duplicates", "rounds with duplicates"},
+                   {"duplicates_per_million_rounds", "duplicates per 1e6 rounds"}, {"seconds", "seconds"}});
+  for (const auto& row : races) {
+    const auto& x = row.result;
+    t.add_row({row.policy, x.rounds, o.race_items, x.steals_kept, x.skipped, x.duplicates, x.rounds_with_duplicates,
+               report::Cell::fixed(x.duplicates_per_million_rounds(), 2), report::Cell::fixed(x.seconds, 1)});
   }
+  return t;
+}
+
+report::Table case_table(const std::vector<CaseResult>& cases) {
+  report::Table t({{"target", "target", false}, {"contract", "contract", false}, {"threads", "P"},
+                   {"frames", "frames"}, {"seconds", "seconds"}, {"frames_with_0_duplicates", "0 dup"},
+                   {"frames_with_1_duplicate", "1 dup"}, {"frames_with_2plus_duplicates", "2+ dup"}, {"lost", "lost"},
+                   {"duplicated", "duplicated"}, {"duplicates_per_million_items", "dup per 1e6 items"},
+                   {"steals", "steals"}, {"skipped", "skipped"}, {"chaos_injections", "chaos"},
+                   {"negative_control", "control", false}, {"passed", "passed", false}, {"verdict", "verdict", false}});
+  for (const auto& c : cases) {
+    t.add_row({c.target, c.contract, c.threads, c.frames, report::Cell::fixed(c.seconds, 3), c.frames_dup0, c.frames_dup1,
+               c.frames_dup2plus, c.lost, c.duplicated, report::Cell::fixed(c.duplicates_per_million_items(), 3), c.steals,
+               c.skipped, c.chaos, c.negative_control, c.passed, c.verdict});
+  }
+  return t;
+}
+
+report::Table scenario_table(const std::vector<ScenarioRow>& rows) {
+  report::Table t({{"target", "target", false}, {"scenario", "scenario", false}, {"runs", "runs"}, {"lost", "lost"},
+                   {"duplicated", "duplicated"}, {"passed", "result", false}});
+  for (const auto& r : rows) {
+    t.add_row({r.target, r.scenario, r.runs, r.lost, r.duplicated,
+               report::Cell::shown_as(r.passed ? "as expected" : "**FAIL**", r.passed)});
+  }
+  return t;
+}
+
+report::Table fault_table(const std::vector<FaultResult>& faults) {
+  report::Table t({{"fault", "fault", false}, {"passed", "result", false}, {"detail", "detail", false}});
+  for (const auto& f : faults) t.add_row({f.name, report::Cell::shown_as(f.passed ? "pass" : "**FAIL**", f.passed), f.detail});
+  return t;
+}
+
+void write_results(const Options& o, const StressReport& r, double seconds) {
 #if defined(__SANITIZE_THREAD__)
   const char* build = "ThreadSanitizer";
 #else
   const char* build = "release (no sanitizer)";
 #endif
-  std::ofstream md(std::filesystem::path(o.out) / (o.rates ? "rates.md" : "stress.md"));
-  std::ofstream js(std::filesystem::path(o.out) / (o.rates ? "rates.json" : "stress.json"));
+  const report::ResultsDir dir(kProgram, o.out);
+  std::ostringstream md;
   md << "# " << (o.rates ? "Duplicate rates on real hardware" : "Stress results") << " (measured)\n\n";
-  if (!races.empty()) {
-    md << "## The handshake raced head-on\n\nEach round the owner claims a list of " << o.race_items
-       << " items (" << o.race_work << " multiply-adds after each) while the thief makes one steal attempt on it at the same moment (stress/handshake_race.hpp); "
-          "a duplicate is an id the owner claimed and the thief kept.\n\n"
-       << "| policy | rounds | steals kept | items skipped after re-read | duplicates | rounds with duplicates | "
-          "duplicates per 1e6 rounds | seconds |\n|---|---|---|---|---|---|---|---|\n";
-    for (const auto& row : races) {
-      const auto& x = row.result;
-      md << "| " << row.policy << " | " << x.rounds << " | " << x.steals_kept << " | " << x.skipped << " | "
-         << x.duplicates << " | " << x.rounds_with_duplicates << " | " << fmt(x.duplicates_per_million_rounds(), 2)
-         << " | " << fmt(x.seconds, 1) << " |\n";
-    }
-    md << "\n## Frame level\n\n";
+  if (!r.races.empty()) {
+    md << "## The handshake raced head-on\n\nEach round the owner claims a list of " << o.race_items << " items ("
+       << o.race_work << " multiply-adds after each) while the thief makes one steal attempt on it at the same moment "
+       << "(stress/handshake_race.hpp); a duplicate is an id the owner claimed and the thief kept.\n\n"
+       << race_table(r.races, o).markdown() << "\n## Frame level\n\n";
   }
-  md
-     << "Build: " << build << "; " << std::thread::hardware_concurrency() << " hardware threads; items per frame "
-     << o.items << "; chaos " << (o.rates ? 0 : o.chaos) << " per million labelled accesses; seed " << o.seed
-     << "; " << (o.frames ? std::to_string(o.frames) + " frames" : fmt(o.seconds, 1) + " s")
+  md << "Build: " << build << "; " << std::thread::hardware_concurrency() << " hardware threads; items per frame "
+     << o.items << "; chaos " << (o.rates ? 0 : o.chaos) << " per million labelled accesses; seed " << o.seed << "; "
+     << (o.frames ? std::to_string(o.frames) + " frames" : fmt(o.seconds, 1) + " s")
      << " per case; a negative control runs until it is caught (at most " << fmt(o.control_seconds, 0)
-     << " s), so its frames and seconds are the time to the first duplicate.\n\n"
-     << "| target | contract | P | frames | seconds | 0 dup | 1 dup | 2+ dup | lost | dup per 1e6 items | steals | skipped | chaos | verdict |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  js << "{\n  \"kind\": \"measured\", \"build\": \"" << build << "\", \"items\": " << o.items
-     << ", \"chaos_per_million\": " << (o.rates ? 0 : o.chaos) << ",\n  \"handshake_race\": [";
-  for (std::size_t i = 0; i < races.size(); ++i) {
-    const auto& x = races[i].result;
-    js << (i ? ",\n    " : "\n    ") << "{\"policy\": \"" << races[i].policy << "\", \"rounds\": " << x.rounds
-       << ", \"items_per_round\": " << o.race_items << ", \"steals_kept\": " << x.steals_kept
-       << ", \"skipped\": " << x.skipped << ", \"duplicates\": " << x.duplicates
-       << ", \"rounds_with_duplicates\": " << x.rounds_with_duplicates << ", \"seconds\": " << x.seconds << "}";
+     << " s), so its frames and seconds are the time to the first duplicate.\n\n" << case_table(r.cases).markdown();
+  if (!r.scenario_rows.empty()) {
+    md << "\n## The model checker's scenarios on real threads\n\nThe configurations of models_check/scenarios.hpp, each "
+       << "run " << o.scenario_runs << " times per target (for the negative controls a duplicate here is a catch, but "
+       << "not required: the frame-level cases above must catch them).\n\n" << scenario_table(r.scenario_rows).markdown();
   }
-  js << "],\n  \"cases\": [\n";
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const auto& c = cases[i];
-    md << "| " << c.target << " | " << c.contract << " | " << c.threads << " | " << c.frames << " | "
-       << fmt(c.seconds, 3) << " | " << c.frames_dup0
-       << " | " << c.frames_dup1 << " | " << c.frames_dup2plus << " | " << c.lost << " | "
-       << fmt(c.duplicates_per_million_items(), 3) << " | " << c.steals << " | " << c.skipped << " | " << c.chaos
-       << " | " << c.verdict << " |\n";
-    js << "    {\"target\": \"" << c.target << "\", \"contract\": \"" << c.contract << "\", \"negative_control\": "
-       << (c.negative_control ? "true" : "false") << ", \"threads\": " << c.threads
-       << ", \"frames\": " << c.frames << ", \"frames_with_0_duplicates\": " << c.frames_dup0
-       << ", \"frames_with_1_duplicate\": " << c.frames_dup1 << ", \"frames_with_2plus_duplicates\": "
-       << c.frames_dup2plus << ", \"lost\": " << c.lost << ", \"duplicated\": " << c.duplicated
-       << ", \"duplicates_per_million_items\": " << c.duplicates_per_million_items() << ", \"steals\": " << c.steals
-       << ", \"skipped\": " << c.skipped << ", \"chaos_injections\": " << c.chaos << ", \"seconds\": " << c.seconds
-       << ", \"passed\": " << (c.passed ? "true" : "false") << "}" << (i + 1 < cases.size() || !faults.empty() ? "," : "")
-       << "\n";
-  }
-  if (!scenario_rows.empty()) {
-    md << "\n## The model checker's scenarios on real threads\n\nThe configurations of "
-          "models_check/scenarios.hpp, each run " << o.scenario_runs << " times per target (for the negative controls "
-          "a duplicate here is a catch, but not required: the frame-level cases above must catch them).\n\n| target | scenario | runs | lost | duplicated | result |\n"
-          "|---|---|---|---|---|---|\n";
-    for (const auto& r : scenario_rows) {
-      md << "| " << r.target << " | " << r.scenario << " | " << r.runs << " | " << r.lost << " | " << r.duplicated
-         << " | " << (r.passed ? "as expected" : "**FAIL**") << " |\n";
-    }
-  }
-  if (!faults.empty()) {
-    md << "\n## Faults\n\n| fault | result | detail |\n|---|---|---|\n";
-    for (std::size_t i = 0; i < faults.size(); ++i) {
-      const auto& f = faults[i];
-      md << "| " << f.name << " | " << (f.passed ? "pass" : "**FAIL**") << " | " << f.detail << " |\n";
-      js << "    {\"fault\": \"" << f.name << "\", \"passed\": " << (f.passed ? "true" : "false") << "}"
-         << (i + 1 < faults.size() ? "," : "") << "\n";
-    }
-  }
-  md << "\n" << (all_ok ? "All cases as expected" : "**Some cases failed**") << "; total " << fmt(seconds, 1) << " s.\n";
-  js << "  ],\n  \"all_passed\": " << (all_ok ? "true" : "false") << ", \"seconds\": " << seconds << "\n}\n";
+  if (!r.faults.empty()) md << "\n## Faults\n\n" << fault_table(r.faults).markdown();
+  md << "\n" << (r.all_ok ? "All cases as expected" : "**Some cases failed**") << "; total " << fmt(seconds, 1) << " s.\n";
+  dir.write(o.rates ? "rates.md" : "stress.md", md.str());
+
+  report::Json js = report::document(kProgram, 2, "measured", FRONTSTEAL_GIT_COMMIT);
+  js["build"] = build;
+  js["items"] = o.items;
+  js["chaos_per_million"] = o.rates ? 0 : o.chaos;
+  js["handshake_race"] = race_table(r.races, o).json();
+  js["cases"] = case_table(r.cases).json();
+  js["scenarios"] = scenario_table(r.scenario_rows).json();
+  js["faults"] = fault_table(r.faults).json();
+  js["all_passed"] = r.all_ok;
+  js["seconds"] = seconds;
+  dir.write_json(o.rates ? "rates.json" : "stress.json", js);
 }
 
 void print_case(const CaseResult& c) {
@@ -449,121 +404,130 @@ void print_case(const CaseResult& c) {
   std::fflush(stdout);
 }
 
+// --rates: duplicate rates of every policy and one-step weakening, on this machine's memory model.
+StressReport run_rates(const Options& o) {
+  StressReport r;
+  // Duplicate rates on the real memory model: no chaos, trivial items so claims and steals collide often.
+  chaos_settings() = {0, o.seed};
+  std::vector<TargetInfo> rate_targets{stealing_target<Paper, StdBackend>(), stealing_target<Fenced, StdBackend>()};
+  std::vector<model::PolicyTable> tables;
+  for (const auto& m : model::one_step_mutants(model::table_of<Fenced>())) tables.push_back(m.table);
+  for (const auto& m : model::one_step_mutants(model::table_of<Minimal>())) tables.push_back(m.table);
+  auto race = [&](const std::string& name, auto run) {
+    HandshakeRaceResult x = run();
+    if (!o.quiet) {
+      std::printf("race %-32s %9llu rounds  %7llu duplicates  %10.2f per 1e6 rounds  (%llu steals kept, %llu skipped)\n",
+                  name.c_str(), static_cast<unsigned long long>(x.rounds), static_cast<unsigned long long>(x.duplicates),
+                  x.duplicates_per_million_rounds(), static_cast<unsigned long long>(x.steals_kept),
+                  static_cast<unsigned long long>(x.skipped));
+      std::fflush(stdout);
+    }
+    r.races.push_back({name, x});
+  };
+  const double race_seconds = 20;
+  race("Paper", [&] { return race_handshake<Paper>(o.rounds, o.race_items, o.race_work, race_seconds); });
+  race("SeqCst", [&] { return race_handshake<SeqCst>(o.rounds, o.race_items, o.race_work, race_seconds); });
+  race("Fenced", [&] { return race_handshake<Fenced>(o.rounds, o.race_items, o.race_work, race_seconds); });
+  race("Minimal", [&] { return race_handshake<Minimal>(o.rounds, o.race_items, o.race_work, race_seconds); });
+  if (membarrier_status().available) {
+    race("Asymmetric", [&] { return race_handshake<Asymmetric>(o.rounds, o.race_items, o.race_work, race_seconds); });
+  }
+  for (const auto& table : tables) {
+    model::current_table() = table;
+    race(table.name, [&] { return race_handshake<model::TablePolicy>(o.rounds, o.race_items, o.race_work, race_seconds); });
+  }
+  for (const auto& row : r.races) {  // exactly-once policies must show none, here too
+    const bool exact = row.policy == "SeqCst" || row.policy == "Fenced" || row.policy == "Minimal" ||
+                       row.policy == "Asymmetric";
+    if (exact && row.result.duplicates > 0) r.all_ok = false;
+  }
+  for (const auto& t : rate_targets) {
+    for (WorkerId p : o.threads) {
+      CaseResult c = run_case(t, p, o, 0);
+      c.passed = c.lost == 0;
+      c.verdict = c.lost ? "FAIL: lost items" : (c.duplicated ? "duplicates measured" : "no duplicate seen");
+      if (!o.quiet) print_case(c);
+      r.all_ok = r.all_ok && c.passed;
+      r.cases.push_back(c);
+    }
+  }
+  for (const auto& table : tables) {
+    model::current_table() = table;
+    for (WorkerId p : o.threads) {
+      CaseResult c = run_case(table_target(table), p, o, 0);
+      c.passed = c.lost == 0;
+      c.verdict = c.lost ? "lost items (this mutant loses work)" : (c.duplicated ? "duplicates measured" : "no duplicate seen");
+      if (!o.quiet) print_case(c);
+      r.cases.push_back(c);
+    }
+  }
+  return r;
+}
+
+// The bounded suite: every target x P under chaos, the model checker's scenarios, the faults.
+StressReport run_suite(const Options& o, std::chrono::steady_clock::time_point started) {
+  StressReport r;
+  chaos_settings() = {o.chaos, o.seed};
+  for (const auto& t : targets()) {
+    if (!o.targets.empty() && std::find(o.targets.begin(), o.targets.end(), "all") == o.targets.end() &&
+        std::find(o.targets.begin(), o.targets.end(), t.name) == o.targets.end()) {
+      continue;
+    }
+    for (WorkerId p : o.threads) {
+      if (!o.quiet) std::fprintf(stderr, "[%6.1fs] %s, P=%u\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), t.name.c_str(), p);
+      CaseResult c = run_case(t, p, o, 1);
+      print_case(c);
+      r.all_ok = r.all_ok && c.passed;
+      r.cases.push_back(c);
+    }
+  }
+  if (o.targets.empty() && o.scenario_runs > 0) {
+    for (const auto& t : targets()) {
+      if (!t.run_scenario) continue;  // the scenarios exercise the stealing protocol only
+      std::uint64_t caught = 0;
+      for (const auto& spec : model::scenarios()) {
+        ScenarioRow row{t.name, std::string(spec.name), o.scenario_runs};
+        for (std::uint64_t run = 0; run < o.scenario_runs; ++run) {
+          const ExecutionAudit a = t.run_scenario(spec, o.seed + run);
+          row.lost += a.lost;
+          row.duplicated += a.duplicated;
+        }
+        caught += row.duplicated;
+        row.passed = row.lost == 0 && (t.negative_control || t.contract == Contract::kAtLeastOnce || row.duplicated == 0);
+        r.all_ok = r.all_ok && row.passed;
+        r.scenario_rows.push_back(row);
+      }
+      // The frame-level cases above are where a negative control must be caught (the run fails otherwise);
+      // these tiny scenarios rarely line a claim up with a steal, so here it is reported, not required.
+      std::printf("scenarios %-30s %s\n", t.name.c_str(),
+                  t.negative_control ? (caught ? "negative control caught" : "negative control not caught here")
+                                     : "ran");
+    }
+  }
+  if (o.targets.empty()) {
+    for (auto fault : {fault_stall, fault_throw, fault_edges}) {
+      FaultResult f = fault(o);
+      std::printf("fault %-45s %s  %s\n", f.name.c_str(), f.passed ? "pass" : "FAIL", f.detail.c_str());
+      r.all_ok = r.all_ok && f.passed;
+      r.faults.push_back(f);
+    }
+  }
+  return r;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options o = parse(argc, argv);
+  const Options o = parse(argc, argv);
   const auto started = std::chrono::steady_clock::now();
-  std::vector<CaseResult> cases;
-  std::vector<FaultResult> faults;
-  std::vector<RaceRow> races;
-  std::vector<ScenarioRow> scenario_rows;
-  bool all_ok = true;
-
-  if (o.rates) {
-    // Duplicate rates on the real memory model: no chaos, trivial items so claims and steals collide often.
-    chaos_settings() = {0, o.seed};
-    std::vector<TargetInfo> rate_targets{stealing_target<Paper, StdBackend>(), stealing_target<Fenced, StdBackend>()};
-    std::vector<model::PolicyTable> tables;
-    for (const auto& m : model::one_step_mutants(model::table_of<Fenced>())) tables.push_back(m.table);
-    for (const auto& m : model::one_step_mutants(model::table_of<Minimal>())) tables.push_back(m.table);
-    auto race = [&](const std::string& name, auto run) {
-      HandshakeRaceResult x = run();
-      if (!o.quiet) {
-        std::printf("race %-32s %9llu rounds  %7llu duplicates  %10.2f per 1e6 rounds  (%llu steals kept, %llu skipped)\n",
-                    name.c_str(), static_cast<unsigned long long>(x.rounds), static_cast<unsigned long long>(x.duplicates),
-                    x.duplicates_per_million_rounds(), static_cast<unsigned long long>(x.steals_kept),
-                    static_cast<unsigned long long>(x.skipped));
-        std::fflush(stdout);
-      }
-      races.push_back({name, x});
-    };
-    const double race_seconds = 20;
-    race("Paper", [&] { return race_handshake<Paper>(o.rounds, o.race_items, o.race_work, race_seconds); });
-    race("SeqCst", [&] { return race_handshake<SeqCst>(o.rounds, o.race_items, o.race_work, race_seconds); });
-    race("Fenced", [&] { return race_handshake<Fenced>(o.rounds, o.race_items, o.race_work, race_seconds); });
-    race("Minimal", [&] { return race_handshake<Minimal>(o.rounds, o.race_items, o.race_work, race_seconds); });
-    if (membarrier_status().available) {
-      race("Asymmetric", [&] { return race_handshake<Asymmetric>(o.rounds, o.race_items, o.race_work, race_seconds); });
-    }
-    for (const auto& table : tables) {
-      model::current_table() = table;
-      race(table.name, [&] { return race_handshake<model::TablePolicy>(o.rounds, o.race_items, o.race_work, race_seconds); });
-    }
-    for (const auto& row : races) {  // exactly-once policies must show none, here too
-      const bool exact = row.policy == "SeqCst" || row.policy == "Fenced" || row.policy == "Minimal" ||
-                         row.policy == "Asymmetric";
-      if (exact && row.result.duplicates > 0) all_ok = false;
-    }
-    for (const auto& t : rate_targets) {
-      for (WorkerId p : o.threads) {
-        CaseResult c = run_case(t, p, o, 0);
-        c.passed = c.lost == 0;
-        c.verdict = c.lost ? "FAIL: lost items" : (c.duplicated ? "duplicates measured" : "no duplicate seen");
-        if (!o.quiet) print_case(c);
-        all_ok = all_ok && c.passed;
-        cases.push_back(c);
-      }
-    }
-    for (const auto& table : tables) {
-      model::current_table() = table;
-      for (WorkerId p : o.threads) {
-        CaseResult c = run_case(table_target(table), p, o, 0);
-        c.passed = c.lost == 0;
-        c.verdict = c.lost ? "lost items (this mutant loses work)" : (c.duplicated ? "duplicates measured" : "no duplicate seen");
-        if (!o.quiet) print_case(c);
-        cases.push_back(c);
-      }
-    }
-  } else {
-    chaos_settings() = {o.chaos, o.seed};
-    for (const auto& t : targets()) {
-      if (!o.targets.empty() && std::find(o.targets.begin(), o.targets.end(), "all") == o.targets.end() &&
-          std::find(o.targets.begin(), o.targets.end(), t.name) == o.targets.end()) {
-        continue;
-      }
-      for (WorkerId p : o.threads) {
-        if (!o.quiet) std::fprintf(stderr, "[%6.1fs] %s, P=%u\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), t.name.c_str(), p);
-        CaseResult c = run_case(t, p, o, 1);
-        print_case(c);
-        all_ok = all_ok && c.passed;
-        cases.push_back(c);
-      }
-    }
-    if (o.targets.empty() && o.scenario_runs > 0) {
-      for (const auto& t : targets()) {
-        if (!t.run_scenario) continue;  // the scenarios exercise the stealing protocol only
-        std::uint64_t caught = 0;
-        for (const auto& spec : model::scenarios()) {
-          ScenarioRow row{t.name, std::string(spec.name), o.scenario_runs};
-          for (std::uint64_t run = 0; run < o.scenario_runs; ++run) {
-            const ExecutionAudit a = t.run_scenario(spec, o.seed + run);
-            row.lost += a.lost;
-            row.duplicated += a.duplicated;
-          }
-          caught += row.duplicated;
-          row.passed = row.lost == 0 && (t.negative_control || t.contract == Contract::kAtLeastOnce || row.duplicated == 0);
-          all_ok = all_ok && row.passed;
-          scenario_rows.push_back(row);
-        }
-        // The frame-level cases above are where a negative control must be caught (the run fails otherwise);
-        // these tiny scenarios rarely line a claim up with a steal, so here it is reported, not required.
-        std::printf("scenarios %-30s %s\n", t.name.c_str(),
-                    t.negative_control ? (caught ? "negative control caught" : "negative control not caught here")
-                                       : "ran");
-      }
-    }
-    if (o.targets.empty()) {
-      for (auto fault : {fault_stall, fault_throw, fault_edges}) {
-        FaultResult f = fault(o);
-        std::printf("fault %-45s %s  %s\n", f.name.c_str(), f.passed ? "pass" : "FAIL", f.detail.c_str());
-        all_ok = all_ok && f.passed;
-        faults.push_back(f);
-      }
-    }
-  }
+  const StressReport r = o.rates ? run_rates(o) : run_suite(o, started);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  write_results(o, cases, faults, races, scenario_rows, all_ok, seconds);
-  std::printf("\n%s in %.1f s; results in %s\n", all_ok ? "all cases as expected" : "FAILURES", seconds, o.out.c_str());
-  return all_ok ? 0 : 1;
+  try {
+    write_results(o, r, seconds);
+  } catch (const std::exception& e) {
+    std::cerr << kProgram << ": " << e.what() << "\n";
+    return 1;
+  }
+  std::printf("\n%s in %.1f s; results in %s\n", r.all_ok ? "all cases as expected" : "FAILURES", seconds, o.out.c_str());
+  return r.all_ok ? 0 : 1;
 }
