@@ -27,41 +27,32 @@
 #include <thread>
 #include <vector>
 
-#include "core/cli_args.hpp"
 #include "core/component_publication.hpp"
 #include "core/policies.hpp"
 #include "core/publication_policies.hpp"
 #include "core/stealing_scheduler.hpp"
 #include "core/watchdog.hpp"
+#include "reporting/command_line.hpp"
+#include "reporting/results_dir.hpp"
+#include "reporting/table.hpp"
 #include "stress/chaos_backend.hpp"
+
+#ifndef FRONTSTEAL_GIT_COMMIT
+#define FRONTSTEAL_GIT_COMMIT "unknown"
+#endif
 
 using namespace frontsteal;
 using namespace frontsteal::stress;
+namespace report = frontsteal::report;
 
 namespace {
 
-constexpr std::string_view kProgram = "frontsteal-stress-publication";
-constexpr std::string_view kUsage = R"(usage: frontsteal-stress-publication [options]
-
-Stress test of greedy rendering's triangle publication and buffer reclamation on real threads with chaos: a
+constexpr const char* kProgram = "frontsteal-stress-publication";
+constexpr const char* kDescription = R"(Stress test of greedy rendering's triangle publication and buffer reclamation on real threads with chaos: a
 pusher that never waits, P tessellators (the stealing scheduler, Fenced), the caller as frame driver. Audits every
 pusher update for torn components, use of a slot after its reuse and components going back in time; the planted
 defects Broken:ReuseWithoutGrace and Broken:PublishEachSurface must be caught. Build with the tsan preset for
-ThreadSanitizer's verdict on the triangle cells as well. Exits 1 on any unexpected outcome.
-
-options:
-  --seconds S      run time per case of the sound policy (per P x slots)                     (default 2)
-  --control-seconds S  a negative control runs until its defect is caught; it fails only if S seconds pass
-                   first                                                                     (default 60)
-  --threads LIST   tessellator counts                                                        (default 2,4)
-  --slots LIST     slots per component                                                       (default 2,3)
-  --components N   components (1..4 surfaces each, seeded)                                   (default 24)
-  --chaos N        chaos injections per million labelled accesses                            (default 20000)
-  --seed N         component sizes and chaos                                                  (default 1)
-  --out DIR        results directory                                 (default out/stress-publication)
-  --quiet          no progress lines
-  --help           this text
-)";
+ThreadSanitizer's verdict on the triangle cells as well. Exits 1 on any unexpected outcome, 2 for bad usage.)";
 
 struct Options {
   double seconds = 2;
@@ -201,41 +192,22 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
 
 Options parse(int argc, char** argv) {
   Options o;
-  cli::ArgReader args(argc, argv, kProgram, kUsage);
-  while (args.next()) {
-    const std::string_view a = args.flag();
-    if (a == "--seconds") {
-      o.seconds = cli::parse_number<double>(kProgram, a, args.value(), 0.01, 3600);
-    } else if (a == "--control-seconds") {
-      o.control_seconds = cli::parse_number<double>(kProgram, a, args.value(), 0.01, 3600);
-    } else if (a == "--threads") {
-      o.threads.clear();
-      for (const auto& t : cli::split_list(args.value())) o.threads.push_back(cli::parse_number<WorkerId>(kProgram, a, t, 1, 256));
-    } else if (a == "--slots") {
-      o.slots.clear();
-      for (const auto& t : cli::split_list(args.value())) o.slots.push_back(cli::parse_number<SlotIndex>(kProgram, a, t, 2, 16));
-    } else if (a == "--components") {
-      o.components = cli::parse_number<std::uint32_t>(kProgram, a, args.value(), 1, 100000);
-    } else if (a == "--chaos") {
-      o.chaos = cli::parse_number<std::uint32_t>(kProgram, a, args.value(), 0, 1000000);
-    } else if (a == "--seed") {
-      o.seed = cli::parse_number<std::uint64_t>(kProgram, a, args.value(), 0, ~std::uint64_t{0});
-    } else if (a == "--out") {
-      o.out = args.value();
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else {
-      cli::usage_error(kProgram, "unknown option '" + std::string(a) + "'");
-    }
-  }
+  report::CommandLine cli(kProgram, kDescription);
+  cli.option("--seconds", o.seconds, "run time per case of the sound policy (per P x slots)")->check(CLI::Range(0.01, 3600.0));
+  cli.option("--control-seconds", o.control_seconds, "a negative control runs until its defect is caught; it fails "
+             "only if this many seconds pass first")->check(CLI::Range(0.01, 3600.0));
+  cli.app().add_option("--threads", o.threads, "tessellator counts, comma-separated")->delimiter(',')->check(CLI::Range(1u, 256u));
+  cli.app().add_option("--slots", o.slots, "slots per component, comma-separated")->delimiter(',')->check(CLI::Range(2, 16));
+  cli.option("--components", o.components, "components (1..4 surfaces each, seeded)")->check(CLI::Range(1u, 100000u));
+  cli.option("--chaos", o.chaos, "chaos injections per million labelled accesses")->check(CLI::Range(0u, 1000000u));
+  cli.seed(o.seed, "component sizes and chaos");
+  cli.out(o.out);
+  cli.quiet(o.quiet);
+  cli.parse(argc, argv);
   return o;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
-  std::filesystem::create_directories(o.out);
+std::vector<CaseResult> run_all(const Options& o) {
   std::vector<CaseResult> results;
   using Runner = CaseResult (*)(const Options&, WorkerId, SlotIndex, bool);
   const std::vector<std::pair<Runner, bool>> policies{{&run_case<PublicationOrders>, false},
@@ -250,41 +222,61 @@ int main(int argc, char** argv) {
         if (!o.quiet) {
           std::cerr << kProgram << ": [" << results.size() << "/" << total << "] " << r.policy << " P=" << p
                     << " slots=" << s << ": " << r.frames << " frames, " << r.seconds << " s, " << r.updates
-                    << " updates, torn " << r.torn
-                    << ", reuse " << r.reuse << ", backwards " << r.backwards << " -> "
+                    << " updates, torn " << r.torn << ", reuse " << r.reuse << ", backwards " << r.backwards << " -> "
                     << (r.passed() ? (negative ? "caught" : "ok") : "UNEXPECTED") << "\n";
         }
       }
     }
   }
-  bool ok = true;
-  std::ostringstream md, js;
+  return results;
+}
+
+report::Table case_table(const std::vector<CaseResult>& results) {
+  report::Table t({{"policy", "policy", false}, {"threads", "P"}, {"slots", "slots"}, {"frames", "frames"},
+                   {"seconds", "seconds"}, {"updates", "updates"}, {"driver_waits", "driver waits"}, {"torn", "torn"},
+                   {"reuse", "reuse"}, {"backwards", "backwards"},
+                   {"lag", "lag histogram (frames behind: draws)", false}, {"negative_control", "control", false},
+                   {"passed", "passed", false}, {"verdict", "verdict", false}});
+  for (const CaseResult& r : results) {
+    std::ostringstream lag;
+    report::Json lag_json = report::Json::object();
+    for (const auto& [behind, n] : r.lag) {
+      lag << (lag.tellp() > 0 ? ", " : "") << behind << ": " << n;
+      lag_json[std::to_string(behind)] = n;
+    }
+    const std::string catch_time = std::to_string(r.frames) + " frames, " + report::fixed_text(r.seconds * 1e3, 1) + " ms";
+    const std::string verdict = r.passed() ? (r.negative_control ? "caught (negative control) after " + catch_time : "ok")
+                                           : (r.negative_control ? "FAIL: negative control not caught in " + catch_time : "FAIL");
+    t.add_row({r.policy, r.threads, r.slots, r.frames, report::Cell::fixed(r.seconds, 3), r.updates, r.driver_waits,
+               r.torn, r.reuse, r.backwards, report::Cell::shown_as(lag.str(), lag_json), r.negative_control,
+               r.passed(), verdict});
+  }
+  return t;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  const std::vector<CaseResult> results = run_all(o);
+  const bool ok = std::all_of(results.begin(), results.end(), [](const CaseResult& r) { return r.passed(); });
+  const report::Table table = case_table(results);
+  std::ostringstream md;
   md << "# Publication stress (measured, chaos " << o.chaos << " per million, " << o.seconds
      << " s per sound case; a negative control runs until caught, at most " << o.control_seconds << " s)\n\n"
-     << "| policy | P | slots | frames | seconds | updates | driver waits | torn | reuse | backwards | lag histogram (frames behind: draws) | verdict |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  js << "{\n  \"cases\": [\n";
-  for (std::size_t k = 0; k < results.size(); ++k) {
-    const CaseResult& r = results[k];
-    ok = ok && r.passed();
-    std::ostringstream lag;
-    for (const auto& [behind, n] : r.lag) lag << (lag.tellp() > 0 ? ", " : "") << behind << ": " << n;
-    std::ostringstream catch_time;
-    catch_time << r.frames << " frames, " << std::fixed << std::setprecision(1) << r.seconds * 1e3 << " ms";
-    const std::string verdict = r.passed() ? (r.negative_control ? "caught (negative control) after " + catch_time.str() : "ok")
-                                           : (r.negative_control ? "FAIL: negative control not caught in " + catch_time.str() : "FAIL");
-    md << "| " << r.policy << " | " << r.threads << " | " << r.slots << " | " << r.frames << " | " << r.seconds << " | " << r.updates << " | "
-       << r.driver_waits << " | " << r.torn << " | " << r.reuse << " | " << r.backwards << " | " << lag.str() << " | "
-       << verdict << " |\n";
-    js << "    {\"policy\": \"" << r.policy << "\", \"threads\": " << r.threads << ", \"slots\": " << r.slots
-       << ", \"frames\": " << r.frames << ", \"seconds\": " << r.seconds << ", \"updates\": " << r.updates << ", \"driver_waits\": " << r.driver_waits
-       << ", \"torn\": " << r.torn << ", \"reuse\": " << r.reuse << ", \"backwards\": " << r.backwards
-       << ", \"negative_control\": " << (r.negative_control ? "true" : "false") << ", \"passed\": "
-       << (r.passed() ? "true" : "false") << "}" << (k + 1 < results.size() ? "," : "") << "\n";
+     << table.markdown();
+  report::Json js = report::document(kProgram, 2, "measured", FRONTSTEAL_GIT_COMMIT);
+  js["chaos_per_million"] = o.chaos;
+  js["cases"] = table.json();
+  js["all_as_expected"] = ok;
+  try {
+    const report::ResultsDir dir(kProgram, o.out);
+    dir.write("publication-stress.md", md.str());
+    dir.write_json("publication-stress.json", js);
+  } catch (const std::exception& e) {
+    std::cerr << kProgram << ": " << e.what() << "\n";
+    return 1;
   }
-  js << "  ],\n  \"all_as_expected\": " << (ok ? "true" : "false") << "\n}\n";
-  std::ofstream(o.out + "/publication-stress.md") << md.str();
-  std::ofstream(o.out + "/publication-stress.json") << js.str();
-  std::cout << md.str();
+  std::cout << table.terminal();
   return ok ? 0 : 1;
 }
