@@ -9,9 +9,14 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <optional>
 #include <thread>
+#include <tuple>
+#include <cmath>
 
-#include "core/cli_args.hpp"
+#include "reporting/command_line.hpp"
+#include "reporting/results_dir.hpp"
+#include "reporting/table.hpp"
 #include "render/greedy_renderer.hpp"
 #include "render/headless_gl.hpp"
 #include "tessellate/components.hpp"
@@ -19,38 +24,20 @@
 
 namespace ts = frontsteal::tess;
 namespace rd = frontsteal::render;
+namespace report = frontsteal::report;
 
 namespace {
 
-constexpr std::string_view kProgram = "frontsteal-render";
-constexpr std::string_view kUsage = R"(usage: frontsteal-render [options]
-
-Greedy rendering (paper §5) of a camera path over a scene, headless (OpenGL through EGL; Mesa's llvmpipe when
+constexpr const char* kProgram = "frontsteal-render";
+constexpr const char* kDescription = R"(Greedy rendering (paper §5) of a camera path over a scene, headless (OpenGL through EGL; Mesa's llvmpipe when
 there is no GPU). A pusher thread draws at the display rate and never waits; tessellators (the stealing
 scheduler) re-tessellate the scene for the view current when their frame starts, and swap each connected
 component's triangles in atomically. Writes PNG frames, lagging and synchronized images of the same views with
-PSNR and SSIM, a side-by-side colour plate, and the statistics (render.json, render.csv, render.md, render-lag.png).
-
-options:
-  --scene S          teapot, teacup, teaspoon, plant:<N>[:seed] or a model file          (default plant:4101)
-  --path P           walkthrough, zoom, orbit or orbit-then-zoom                          (default walkthrough)
-  --updates N        pusher updates (one path frame each)                                 (default 150)
-  --rate R           display rate the pusher aims at, updates/s; 0: as fast as it can      (default 30)
-  --tessellators P   tessellator threads                                  (default cores - 1, at least 1)
-  --slots K          triangle buffers per component (>= 2)                                  (default 3)
-  --size WxH         image size                                                       (default 640x360)
-  --tolerance PX     screen-space tessellation tolerance, pixels                              (default 1)
-  --samples N        lagging/synchronized pairs for PSNR and SSIM                              (default 4)
-  --png-every K      also save every K-th update's frame (0: none)                            (default 30)
-  --single-thread    one thread: draw, then tessellate within the §5.3 budget 1/R - m*t_p
-  --null-renderer    no OpenGL: count the triangles that would be drawn (CPU-only measurements)
-  --out DIR          results directory                                              (default out/render)
-  --quiet            no progress lines
-  --help             this text
-
+PSNR and SSIM, a side-by-side colour plate, and the statistics (render.json, render.csv, render.md, render-lag.png).)";
+constexpr const char* kFooter = R"(
 Cracks: components are swapped independently, so while the view moves a crack may open between two
 components tessellated for different views (the paper accepts this, §5.2); inside a component, never.
-)";
+Exit status: 0, 1 when a tessellation fails its audit or the run fails, 2 for bad usage, 3 without OpenGL.)";
 
 struct Options {
   std::string scene = "plant:4101";
@@ -59,66 +46,122 @@ struct Options {
   rd::GreedyOptions greedy;
 };
 
-ts::CameraPathKind parse_path(std::string_view v) {
-  for (auto k : {ts::CameraPathKind::walkthrough, ts::CameraPathKind::zoom, ts::CameraPathKind::orbit,
-                 ts::CameraPathKind::orbit_then_zoom}) {
-    if (v == ts::name(k)) return k;
-  }
-  frontsteal::cli::usage_error(kProgram, "--path is walkthrough, zoom, orbit or orbit-then-zoom, got '" + std::string(v) + "'");
-}
-
 Options parse(int argc, char** argv) {
   Options o;
-  namespace cli = frontsteal::cli;
   o.greedy.tessellators = std::max(1u, std::thread::hardware_concurrency() - 1);
   o.greedy.updates = 150;
   o.greedy.png_every = 30;
-  cli::ArgReader args(argc, argv, kProgram, kUsage);
-  while (args.next()) {
-    const std::string_view a = args.flag();
-    if (a == "--scene") {
-      o.scene = args.value();
-    } else if (a == "--path") {
-      o.greedy.path = parse_path(args.value());
-    } else if (a == "--updates") {
-      o.greedy.updates = cli::parse_number<int>(kProgram, a, args.value(), 1, 1'000'000);
-    } else if (a == "--rate") {
-      o.greedy.display_rate = cli::parse_number<double>(kProgram, a, args.value(), 0, 10000);
-    } else if (a == "--tessellators") {
-      o.greedy.tessellators = cli::parse_number<frontsteal::WorkerId>(kProgram, a, args.value(), 1, 256);
-    } else if (a == "--slots") {
-      o.greedy.slots = cli::parse_number<std::uint32_t>(kProgram, a, args.value(), 2, 16);
-    } else if (a == "--size") {
-      const std::string_view v = args.value();
-      const auto x = v.find('x');
-      if (x == std::string_view::npos) cli::usage_error(kProgram, "--size expects WxH, e.g. 640x360, got '" + std::string(v) + "'");
-      o.greedy.width = cli::parse_number<int>(kProgram, a, v.substr(0, x), 16, 8192);
-      o.greedy.height = cli::parse_number<int>(kProgram, a, v.substr(x + 1), 16, 8192);
-    } else if (a == "--tolerance") {
-      o.greedy.settings.pixel_tolerance = cli::parse_number<double>(kProgram, a, args.value(), 0.05, 100);
-    } else if (a == "--samples") {
-      o.greedy.samples = cli::parse_number<int>(kProgram, a, args.value(), 0, 100);
-    } else if (a == "--png-every") {
-      o.greedy.png_every = cli::parse_number<int>(kProgram, a, args.value(), 0, 1'000'000);
-    } else if (a == "--single-thread") {
-      o.greedy.single_thread = true;
-    } else if (a == "--null-renderer") {
-      o.greedy.null_renderer = true;
-    } else if (a == "--out") {
-      o.out = args.value();
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else {
-      cli::usage_error(kProgram, "unknown option '" + std::string(a) + "'");
-    }
+  report::CommandLine cli(kProgram, kDescription, kFooter);
+  cli.option("--scene", o.scene, "teapot, teacup, teaspoon, plant:<N>[:seed] or a model file");
+  std::string path = ts::name(o.greedy.path);
+  cli.option("--path", path, "walkthrough, zoom, orbit or orbit-then-zoom")
+      ->check(CLI::IsMember({"walkthrough", "zoom", "orbit", "orbit-then-zoom"}));
+  cli.option("--updates", o.greedy.updates, "pusher updates (one path frame each)")->check(CLI::Range(1, 1'000'000));
+  cli.option("--rate", o.greedy.display_rate, "display rate the pusher aims at, updates/s; 0: as fast as it can")
+      ->check(CLI::Range(0.0, 10000.0));
+  cli.option("--tessellators", o.greedy.tessellators, "tessellator threads (default cores - 1, at least 1)")
+      ->check(CLI::Range(1u, 256u));
+  cli.option("--slots", o.greedy.slots, "triangle buffers per component")->check(CLI::Range(2u, 16u));
+  std::string size = std::to_string(o.greedy.width) + "x" + std::to_string(o.greedy.height);
+  cli.option("--size", size, "image size")->check(report::size_validator());
+  cli.option("--tolerance", o.greedy.settings.pixel_tolerance, "screen-space tessellation tolerance, pixels")
+      ->check(CLI::Range(0.05, 100.0));
+  cli.option("--samples", o.greedy.samples, "lagging/synchronized pairs for PSNR and SSIM")->check(CLI::Range(0, 100));
+  cli.option("--png-every", o.greedy.png_every, "also save every K-th update's frame (0: none)")->check(CLI::Range(0, 1'000'000));
+  cli.flag("--single-thread", o.greedy.single_thread, "one thread: draw, then tessellate within the §5.3 budget 1/R - m*t_p");
+  cli.flag("--null-renderer", o.greedy.null_renderer, "no OpenGL: count the triangles that would be drawn (CPU-only measurements)");
+  cli.out(o.out);
+  cli.quiet(o.quiet);
+  cli.parse(argc, argv);
+  for (auto k : {ts::CameraPathKind::walkthrough, ts::CameraPathKind::zoom, ts::CameraPathKind::orbit,
+                 ts::CameraPathKind::orbit_then_zoom}) {
+    if (path == ts::name(k)) o.greedy.path = k;
   }
+  std::tie(o.greedy.width, o.greedy.height) = report::parse_size(size);
   return o;
 }
 
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
+using report::fixed_text;
+
+report::Table summary_table(const rd::GreedyStats& st) {
+  report::Table t({{"updates_per_second", "updates/s"}, {"tessellations_per_second", "tessellations/s"},
+                   {"surfaces_per_second", "surfaces/s"}, {"mean_lag", "avg lag (frames)"}, {"max_lag", "max lag"},
+                   {"mean_triangles", "triangles/update"}, {"driver_waits", "driver waits"}, {"seconds", "seconds"}});
+  t.add_row({report::Cell::fixed(st.updates_per_second, 2), report::Cell::fixed(st.tessellations_per_second, 2),
+             report::Cell::fixed(st.surfaces_per_second, 0), report::Cell::fixed(st.mean_lag, 2), st.max_lag,
+             report::Cell::fixed(st.mean_triangles, 0), st.driver_waits, report::Cell::fixed(st.seconds, 2)});
+  return t;
+}
+
+report::Table quality_table(const rd::GreedyStats& st) {
+  report::Table t({{"update", "update"}, {"mean_lag", "mean lag"}, {"psnr_db", "PSNR (dB)"}, {"ssim", "SSIM"},
+                   {"images", "images", false}});
+  for (const rd::QualitySample& q : st.quality) {
+    const report::Json psnr = std::isfinite(q.psnr_db) ? report::Json(q.psnr_db) : report::Json(nullptr);
+    t.add_row({q.update, report::Cell::fixed(q.mean_lag, 2), report::Cell::shown_as(fixed_text(q.psnr_db, 2), psnr),
+               report::Cell::fixed(q.ssim, 4),
+               std::filesystem::path(q.lagging_png).filename().string() + ", " +
+                   std::filesystem::path(q.synchronized_png).filename().string()});
+  }
+  return t;
+}
+
+report::Table update_table(const rd::GreedyStats& st) {
+  report::Table t({{"update", "update"}, {"at_seconds", "at (s)"}, {"draw_ms", "draw (ms)"}, {"mean_lag", "mean lag"},
+                   {"max_lag", "max lag"}, {"triangles", "triangles"}, {"uploads", "uploads"}, {"budget_ms", "budget (ms)"}});
+  for (const rd::UpdateRecord& r : st.per_update) {
+    t.add_row({r.update, report::Cell::fixed(r.at_seconds, 3), report::Cell::fixed(r.draw_ms, 3),
+               report::Cell::fixed(r.mean_lag, 2), r.max_lag, r.triangles, r.uploads, report::Cell::fixed(r.budget_ms, 3)});
+  }
+  return t;
+}
+
+// render.{md,json,csv}, render.gp and its PNG; the markdown is printed too.
+void write_results(const Options& o, const ts::Model& model, const rd::GreedyStats& st, const report::ResultsDir& dir) {
+  std::ostringstream md;
+  md << "# Greedy rendering (measured)\n\n"
+     << "Scene " << o.scene << " (" << model.surfaces.size() << " surfaces), " << ts::name(o.greedy.path) << " path, "
+     << o.greedy.width << "x" << o.greedy.height << ", tolerance " << o.greedy.settings.pixel_tolerance << " px, "
+     << o.greedy.slots << " slots per component. Commit " << FRONTSTEAL_GIT_COMMIT << ", "
+     << std::thread::hardware_concurrency() << " hardware threads.\n\n"
+     << "- renderer: " << st.renderer << "\n- mode: " << st.mode << "\n- display rate asked: "
+     << (o.greedy.display_rate > 0 ? fixed_text(o.greedy.display_rate, 1) + " updates/s" : std::string("as fast as possible"))
+     << "\n- tessellation audit (trimmed pieces tiled exactly, (u, v) area = trim-loop area): "
+     << st.tessellation_inconsistencies << " failing surface tessellations\n\n" << summary_table(st).markdown();
+  if (!st.quality.empty()) {
+    md << "\nLagging (what the pusher drew) against synchronized (every surface tessellated for that very view):\n\n"
+       << quality_table(st).markdown();
+    if (!st.colour_plate_png.empty()) md << "\nColour plate (left lagging, right synchronized): colour-plate.png\n";
+  }
+  report::Json js = report::document(kProgram, 2, "measured", FRONTSTEAL_GIT_COMMIT);
+  js["scene"] = o.scene;
+  js["surfaces"] = model.surfaces.size();
+  js["path"] = ts::name(o.greedy.path);
+  js["width"] = o.greedy.width;
+  js["height"] = o.greedy.height;
+  js["hardware_threads"] = std::thread::hardware_concurrency();
+  js["renderer"] = st.renderer;
+  js["mode"] = st.mode;
+  js["display_rate"] = o.greedy.display_rate;
+  js["tessellators"] = o.greedy.tessellators;
+  js["slots"] = o.greedy.slots;
+  js["updates"] = st.updates;
+  js["tessellation_frames"] = st.tessellation_frames;
+  js["tessellation_inconsistencies"] = st.tessellation_inconsistencies;
+  const report::Json summary = summary_table(st).json()[0];
+  for (auto it = summary.begin(); it != summary.end(); ++it) js[it.key()] = it.value();
+  js["quality"] = quality_table(st).json();
+  dir.write("render.md", md.str());
+  dir.write_json("render.json", js);
+  dir.write("render.csv", update_table(st).csv());
+  dir.write("render.gp", "# gnuplot script written by frontsteal-render; run from " + o.out + ": gnuplot render.gp\n"
+            "set terminal pngcairo size 900,420\nset output 'render-lag.png'\nset datafile separator ','\n"
+            "set title 'Greedy rendering: lag of the drawn triangles behind the view (measured)'\n"
+            "set xlabel 'pusher update'\nset ylabel 'lag (frames)'\nset key top left\n"
+            "plot 'render.csv' every ::1 using 1:4 with lines lw 2 title 'mean over components', "
+            "'' every ::1 using 1:5 with lines title 'max'\n");
+  dir.plot("render.gp");
+  std::cout << md.str();
 }
 
 }  // namespace
@@ -140,10 +183,11 @@ int main(int argc, char** argv) {
     const ts::Box box = ts::model_box(model);
     ts::assign_components(model, 1e-6 * std::max(1.0, glm::length(box.hi - box.lo)));
   }
-  std::error_code ec;
-  std::filesystem::create_directories(o.out, ec);
-  if (ec) {
-    std::cerr << kProgram << ": cannot create " << o.out << ": " << ec.message() << '\n';
+  std::optional<report::ResultsDir> dir;
+  try {
+    dir.emplace(kProgram, o.out);
+  } catch (const std::exception& e) {
+    std::cerr << kProgram << ": " << e.what() << '\n';
     return 2;
   }
   o.greedy.out_dir = o.out;
@@ -153,7 +197,7 @@ int main(int argc, char** argv) {
     o.greedy.progress = [](const std::string& line) { std::cerr << kProgram << ": " << line << '\n'; };
     std::cerr << kProgram << ": " << o.scene << " (" << model.surfaces.size() << " surfaces, " << components
               << " components), " << ts::name(o.greedy.path) << " path, " << o.greedy.updates << " updates at "
-              << (o.greedy.display_rate > 0 ? fixed(o.greedy.display_rate, 0) + "/s" : std::string("full speed")) << '\n';
+              << (o.greedy.display_rate > 0 ? fixed_text(o.greedy.display_rate, 0) + "/s" : std::string("full speed")) << '\n';
   }
   rd::GreedyStats st;
   try {
@@ -166,70 +210,12 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  // ---- results ---------------------------------------------------------------------------------------------
-  std::ostringstream md, js, csv;
-  md << "# Greedy rendering (measured)\n\n"
-     << "Scene " << o.scene << " (" << model.surfaces.size() << " surfaces), " << ts::name(o.greedy.path) << " path, "
-     << o.greedy.width << "x" << o.greedy.height << ", tolerance " << o.greedy.settings.pixel_tolerance << " px, "
-     << o.greedy.slots << " slots per component. Commit " << FRONTSTEAL_GIT_COMMIT << ", "
-     << std::thread::hardware_concurrency() << " hardware threads.\n\n"
-     << "- renderer: " << st.renderer << "\n- mode: " << st.mode << "\n- display rate asked: "
-     << (o.greedy.display_rate > 0 ? fixed(o.greedy.display_rate, 1) + " updates/s" : std::string("as fast as possible"))
-     << "\n- tessellation audit (trimmed pieces tiled exactly, (u, v) area = trim-loop area): "
-     << st.tessellation_inconsistencies << " failing surface tessellations"
-     << "\n\n| updates/s | tessellations/s | surfaces/s | avg lag (frames) | max lag | triangles/update | driver waits | seconds |\n"
-     << "|---|---|---|---|---|---|---|---|\n"
-     << "| " << fixed(st.updates_per_second, 2) << " | " << fixed(st.tessellations_per_second, 2) << " | "
-     << fixed(st.surfaces_per_second, 0) << " | " << fixed(st.mean_lag, 2) << " | " << st.max_lag << " | "
-     << fixed(st.mean_triangles, 0) << " | " << st.driver_waits << " | " << fixed(st.seconds, 2) << " |\n";
-  if (!st.quality.empty()) {
-    md << "\nLagging (what the pusher drew) against synchronized (every surface tessellated for that very view):\n\n"
-       << "| update | mean lag | PSNR (dB) | SSIM | images |\n|---|---|---|---|---|\n";
-    for (const rd::QualitySample& q : st.quality) {
-      md << "| " << q.update << " | " << fixed(q.mean_lag, 2) << " | " << fixed(q.psnr_db, 2) << " | " << fixed(q.ssim, 4)
-         << " | " << std::filesystem::path(q.lagging_png).filename().string() << ", "
-         << std::filesystem::path(q.synchronized_png).filename().string() << " |\n";
-    }
-    if (!st.colour_plate_png.empty()) md << "\nColour plate (left lagging, right synchronized): colour-plate.png\n";
+  try {
+    write_results(o, model, st, *dir);
+  } catch (const std::exception& e) {
+    std::cerr << kProgram << ": " << e.what() << '\n';
+    return 1;
   }
-  js << "{\n  \"scene\": \"" << o.scene << "\", \"surfaces\": " << model.surfaces.size() << ", \"path\": \""
-     << ts::name(o.greedy.path) << "\", \"width\": " << o.greedy.width << ", \"height\": " << o.greedy.height
-     << ",\n  \"commit\": \"" << FRONTSTEAL_GIT_COMMIT << "\", \"hardware_threads\": " << std::thread::hardware_concurrency()
-     << ",\n  \"renderer\": \"" << st.renderer << "\", \"mode\": \"" << st.mode << "\", \"display_rate\": "
-     << o.greedy.display_rate << ", \"tessellators\": " << o.greedy.tessellators << ", \"slots\": " << o.greedy.slots
-     << ",\n  \"measured\": true, \"updates\": " << st.updates << ", \"seconds\": " << st.seconds
-     << ", \"updates_per_second\": " << st.updates_per_second << ", \"tessellations_per_second\": "
-     << st.tessellations_per_second << ", \"surfaces_per_second\": " << st.surfaces_per_second
-     << ", \"tessellation_frames\": " << st.tessellation_frames << ", \"mean_lag\": " << st.mean_lag
-     << ", \"max_lag\": " << st.max_lag << ", \"mean_triangles\": " << st.mean_triangles << ", \"driver_waits\": "
-     << st.driver_waits << ", \"tessellation_inconsistencies\": " << st.tessellation_inconsistencies
-     << ",\n  \"quality\": [";
-  for (std::size_t k = 0; k < st.quality.size(); ++k) {
-    const rd::QualitySample& q = st.quality[k];
-    js << (k ? ", " : "") << "{\"update\": " << q.update << ", \"mean_lag\": " << q.mean_lag << ", \"psnr_db\": "
-       << (std::isfinite(q.psnr_db) ? fixed(q.psnr_db, 3) : std::string("null")) << ", \"ssim\": " << q.ssim << "}";
-  }
-  js << "]\n}\n";
-  csv << "update,at_seconds,draw_ms,mean_lag,max_lag,triangles,uploads,budget_ms\n";
-  for (const rd::UpdateRecord& r : st.per_update) {
-    csv << r.update << ',' << r.at_seconds << ',' << r.draw_ms << ',' << r.mean_lag << ',' << r.max_lag << ','
-        << r.triangles << ',' << r.uploads << ',' << r.budget_ms << '\n';
-  }
-  std::ofstream(o.out + "/render.md") << md.str();
-  std::ofstream(o.out + "/render.json") << js.str();
-  std::ofstream(o.out + "/render.csv") << csv.str();
-  std::ofstream(o.out + "/render.gp")
-      << "# gnuplot script written by frontsteal-render; run from " << o.out << ": gnuplot render.gp\n"
-      << "set terminal pngcairo size 900,420\nset output 'render-lag.png'\nset datafile separator ','\n"
-      << "set title 'Greedy rendering: lag of the drawn triangles behind the view (measured)'\n"
-      << "set xlabel 'pusher update'\nset ylabel 'lag (frames)'\nset key top left\n"
-      << "plot 'render.csv' every ::1 using 1:4 with lines lw 2 title 'mean over components', "
-         "'' every ::1 using 1:5 with lines title 'max'\n";
-  const std::string plot = "cd '" + o.out + "' && gnuplot render.gp 2>/dev/null";
-  if (std::system(plot.c_str()) != 0 && !o.quiet) {
-    std::cerr << kProgram << ": gnuplot failed or is missing (apt-get install gnuplot-nox); render.gp is written\n";
-  }
-  std::cout << md.str();
   if (!o.quiet) std::cerr << kProgram << ": wrote " << o.out << "/render.{md,json,csv}, render-lag.png and the PNG frames\n";
   if (st.tessellation_inconsistencies > 0) {
     std::cerr << kProgram << ": AUDIT FAILED: " << st.tessellation_inconsistencies
