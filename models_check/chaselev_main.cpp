@@ -13,21 +13,25 @@
 #include <vector>
 
 #include "core/chase_lev_policies.hpp"
-#include "core/cli_args.hpp"
 #include "models_check/report_text.hpp"
 #include "models_check/chaselev_check.hpp"
 #include "models_check/table_policy.hpp"
+#include "reporting/command_line.hpp"
+#include "reporting/results_dir.hpp"
+#include "reporting/table.hpp"
+
+#ifndef FRONTSTEAL_GIT_COMMIT
+#define FRONTSTEAL_GIT_COMMIT "unknown"
+#endif
 
 using namespace frontsteal;
 using namespace frontsteal::model;
+namespace report = frontsteal::report;
 
 namespace {
 
-constexpr std::string_view kProgram = "frontsteal-modelcheck-chaselev";
-
-constexpr std::string_view kUsage = R"(usage: frontsteal-modelcheck-chaselev [options]
-
-Model-checks the Chase-Lev work-stealing deque (core/chase_lev_deque.hpp, the baseline scheduler's deque) with
+constexpr const char* kProgram = "frontsteal-modelcheck-chaselev";
+constexpr const char* kDescription = R"(Model-checks the Chase-Lev work-stealing deque (core/chase_lev_deque.hpp, the baseline scheduler's deque) with
 Relacy. Checks: every pushed item is returned exactly once (by the owner's take, a steal, or a final drain), no
 data race on an item's payload (written before push, read by whoever gets the item), nothing lost. Runs Le et
 al.'s orders (ChaseLev: must pass) and three planted defects (Broken:TakeWithoutFence, Broken:TakeLastWithoutCas,
@@ -35,23 +39,11 @@ Broken:PushWithoutRelease: each must fail) on every scenario of models_check/cha
 search and by a context-bound search; the scenarios are finite programs, so the context-bound search runs to
 completion (a search that hits --cap is reported as incomplete, never as a pass). Then weakens each Chase-Lev
 site of ChaseLev by one step: each mutant must be killed or be a listed survivor with its reason. Writes
-chaselev.md and chaselev.json; exits 1 on any unexpected verdict.
-
-options:
-  --iterations N         random-search iterations per policy and scenario               (default 100000)
-  --mutant-iterations N  random-search iterations per mutant and scenario                (default 20000)
-  --bound N              context-bound search bound, 0: none                             (default 2)
-  --cap N                executions after which a context-bound search stops (incomplete) (default 2000000)
-  --full                 also a full search (every interleaving Relacy can produce) per policy and scenario
-  --no-mutants           skip the kill matrix
-  --out DIR              results directory                            (default out/modelcheck-chaselev)
-  --quiet                no progress lines
-  --help                 this text
-
+chaselev.md and chaselev.json; exits 1 on any unexpected verdict, 2 for bad usage.)";
+constexpr const char* kFooter = R"(
 Bounds, stated honestly: Relacy keeps a few stores per atomic and never produces load buffering; a random
 search samples, and a context-bound search is exhaustive only within its bound. A pass is a bounded search, not
-a proof.
-)";
+a proof.)";
 
 struct Options {
   std::uint64_t iterations = 100000;
@@ -66,32 +58,19 @@ struct Options {
 
 Options parse(int argc, char** argv) {
   Options o;
-  cli::ArgReader args(argc, argv, kProgram, kUsage);
-  const auto count = [&](std::string_view flag, std::string_view v) {
-    return cli::parse_number<std::uint64_t>(kProgram, flag, v, 1, 1'000'000'000);
-  };
-  while (args.next()) {
-    const std::string_view a = args.flag();
-    if (a == "--iterations") {
-      o.iterations = count(a, args.value());
-    } else if (a == "--mutant-iterations") {
-      o.mutant_iterations = count(a, args.value());
-    } else if (a == "--bound") {
-      o.bound = cli::parse_number<unsigned>(kProgram, a, args.value(), 0, 4);
-    } else if (a == "--cap") {
-      o.cap = count(a, args.value());
-    } else if (a == "--full") {
-      o.full = true;
-    } else if (a == "--no-mutants") {
-      o.mutants = false;
-    } else if (a == "--out") {
-      o.out = args.value();
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else {
-      cli::usage_error(kProgram, "unknown option '" + std::string(a) + "'");
-    }
-  }
+  report::CommandLine cli(kProgram, kDescription, kFooter);
+  const auto count = CLI::Range(std::uint64_t{1}, std::uint64_t{1'000'000'000});
+  cli.option("--iterations", o.iterations, "random-search iterations per policy and scenario")->check(count);
+  cli.option("--mutant-iterations", o.mutant_iterations, "random-search iterations per mutant and scenario")->check(count);
+  cli.option("--bound", o.bound, "context-bound search bound, 0: none")->check(CLI::Range(0u, 4u));
+  cli.option("--cap", o.cap, "executions after which a context-bound search stops (incomplete)")->check(count);
+  cli.flag("--full", o.full, "also a full search (every interleaving Relacy can produce) per policy and scenario");
+  bool no_mutants = false;
+  cli.flag("--no-mutants", no_mutants, "skip the kill matrix");
+  cli.out(o.out);
+  cli.quiet(o.quiet);
+  cli.parse(argc, argv);
+  o.mutants = !no_mutants;
   return o;
 }
 
@@ -102,7 +81,7 @@ std::string seconds_text(double s) {
 }
 
 // One search of one scenario: pass only if it found nothing and, for a tree search, was not capped.
-struct Cell {
+struct SearchCell {
   SearchKind kind;
   SearchResult result;
   bool passed() const { return result.verdict == Verdict::kPass && !result.capped; }
@@ -117,7 +96,7 @@ struct Cell {
   }
 };
 
-Cell run_cell(const ChaseLevSpec& spec, SearchKind kind, std::uint64_t iterations, unsigned bound,
+SearchCell run_cell(const ChaseLevSpec& spec, SearchKind kind, std::uint64_t iterations, unsigned bound,
               std::uint64_t cap, const std::string& history_path) {
   SearchConfig config;
   config.kind = kind;
@@ -125,7 +104,7 @@ Cell run_cell(const ChaseLevSpec& spec, SearchKind kind, std::uint64_t iteration
   config.bound = bound;
   config.execution_cap = cap;
   config.history_path = history_path;
-  return Cell{kind, run_chaselev(spec, config)};
+  return SearchCell{kind, run_chaselev(spec, config)};
 }
 
 std::string file_safe(std::string s) {
@@ -166,16 +145,105 @@ const ExpectedSurvivor* find_survivor(const std::string& name) {
   return nullptr;
 }
 
-}  // namespace
+report::Table verdict_table(const Options& o, bool& ok) {
+  struct Row {
+    PolicyTable table;
+    bool must_pass;
+  };
+  const std::vector<Row> rows{{table_of<ChaseLevOrders>(), true},
+                              {table_of<BrokenTakeWithoutFence>(), false},
+                              {table_of<BrokenTakeLastWithoutCas>(), false},
+                              {table_of<BrokenPushWithoutRelease>(), false}};
+  report::Table t({{"policy", "policy", false}, {"expected_pass", "expected", false}, {"scenario", "scenario", false},
+                   {"search", "search", false}, {"verdict", "verdict", false}, {"executions", "executions"},
+                   {"seconds", "s"}});
+  for (const Row& row : rows) {
+    if (!o.quiet) std::cerr << kProgram << ": " << row.table.name << " …\n";
+    current_table() = row.table;
+    bool row_passed = true;
+    const report::Cell expected = report::Cell::shown_as(row.must_pass ? "pass" : "fail (negative control)", row.must_pass);
+    for (const ChaseLevSpec& spec : chaselev_scenarios()) {
+      const std::string hist = o.out + "/histories/" + file_safe(row.table.name) + "-" + std::string(spec.name);
+      std::vector<SearchCell> cells{run_cell(spec, SearchKind::kRandom, o.iterations, 0, 0, hist + "-random.txt")};
+      if (o.bound > 0) cells.push_back(run_cell(spec, SearchKind::kContextBound, 0, o.bound, o.cap, hist + "-bound.txt"));
+      if (o.full) cells.push_back(run_cell(spec, SearchKind::kFull, 0, 0, o.cap, hist + "-full.txt"));
+      bool scenario_passed = true;
+      for (const SearchCell& c : cells) scenario_passed = scenario_passed && c.passed();
+      row_passed = row_passed && scenario_passed;
+      if (row.must_pass && !scenario_passed) ok = false;
+      if (!o.quiet) {
+        std::cerr << "  " << spec.name;
+        for (const SearchCell& c : cells) {
+          std::cerr << "  [" << name(c.kind) << ": " << c.describe() << ", " << c.executions() << " executions, "
+                    << seconds_text(c.result.seconds) << " s]";
+        }
+        std::cerr << "\n";
+      }
+      for (const SearchCell& c : cells) {
+        const std::string search = std::string(name(c.kind)) +
+            (c.kind == SearchKind::kContextBound ? " (bound " + std::to_string(o.bound) + ")" : std::string());
+        t.add_row({row.table.name, expected, report::Cell::shown_as("`" + std::string(spec.name) + "`", spec.name),
+                   search, report::Cell::shown_as(c.describe(), {{"verdict", c.describe()}, {"passed", c.passed()},
+                                                                 {"capped", c.result.capped}}),
+                   c.executions(), report::Cell::shown_as(seconds_text(c.result.seconds), c.result.seconds)});
+      }
+    }
+    if (row_passed != row.must_pass) {
+      ok = false;
+      t.add_row({row.table.name, report::Cell::shown_as(std::string("**UNEXPECTED**: ") + (row_passed ? "passed" : "failed"),
+                                                        "unexpected"),
+                 report::Cell::empty(), report::Cell::empty(), report::Cell::empty(), report::Cell::empty(),
+                 report::Cell::empty()});
+    }
+  }
+  return t;
+}
 
-int main(int argc, char** argv) {
-  const Options o = parse(argc, argv);
-  std::filesystem::create_directories(o.out + "/histories");
-  const auto start = std::chrono::steady_clock::now();
-  std::ostringstream md, js;
-  bool ok = true;
-  const auto& scenarios = chaselev_scenarios();
+report::Table kill_table(const Options& o, bool& ok) {
+  report::Table t({{"site", "site", false}, {"from", "order", false}, {"to", "weakened to", false},
+                   {"verdict", "killed by", false}, {"executions", "executions"}, {"seconds", "s"}});
+  const auto mutants = one_step_mutants(table_of<ChaseLevOrders>(), Protocol::kChaseLev);
+  for (std::size_t k = 0; k < mutants.size(); ++k) {
+    const Mutant& m = mutants[k];
+    if (!o.quiet) std::cerr << kProgram << ": mutant " << (k + 1) << "/" << mutants.size() << " " << m.table.name << "\n";
+    current_table() = m.table;
+    std::string killed_by;
+    std::uint64_t executions = 0;
+    double seconds = 0;
+    std::vector<SearchKind> kinds{SearchKind::kRandom};
+    if (o.bound > 0) kinds.push_back(SearchKind::kContextBound);
+    bool incomplete = false;
+    for (SearchKind kind : kinds) {
+      for (const ChaseLevSpec& spec : chaselev_scenarios()) {
+        const SearchCell c = run_cell(spec, kind, o.mutant_iterations, o.bound, o.cap, "");
+        executions += c.executions();
+        seconds += c.result.seconds;
+        incomplete = incomplete || c.result.capped;
+        if (c.result.verdict != Verdict::kPass) {
+          killed_by = c.describe() + ", in " + std::string(spec.name) + " (" + std::string(name(kind)) + ")";
+          break;
+        }
+      }
+      if (!killed_by.empty()) break;
+    }
+    const bool killed = !killed_by.empty();
+    const ExpectedSurvivor* listed = find_survivor(m.table.name);
+    const bool as_expected = killed ? listed == nullptr : (listed != nullptr && !incomplete);
+    ok = ok && as_expected;
+    std::string verdict = killed ? killed_by
+                                 : std::string("**survived**") + (incomplete ? " (a search was capped)" : "") +
+                                       (listed ? ": " + std::string(listed->why) : std::string(" — not listed"));
+    if (!as_expected) verdict += " **UNEXPECTED**";
+    if (!o.quiet) std::cerr << "  " << verdict << "\n";
+    t.add_row({std::string(info(m.site).label) + " " + std::string(info(m.site).name), m.from, m.to,
+               report::Cell::shown_as(verdict, {{"killed", killed}, {"by", verdict}, {"as_expected", as_expected}}),
+               executions, report::Cell::shown_as(seconds_text(seconds), seconds)});
+  }
+  return t;
+}
 
+std::string preamble(const Options& o) {
+  std::ostringstream md;
   md << "# Chase–Lev deque: Relacy verdicts (measured)\n\n"
      << "core/chase_lev_deque.hpp under Relacy. Per policy and scenario: a random search (" << o.iterations
      << " iterations)";
@@ -186,151 +254,63 @@ int main(int argc, char** argv) {
   md << ". Executions: random iterations; for the context-bound search, executions explored to the end and "
         "checked (or, on a failure, executions until it). Scenarios (models_check/chaselev_scenarios.hpp; owner ops: "
         "P push, T take; then the harness drains the deque):\n\n";
-  for (const ChaseLevSpec& s : scenarios) {
+  for (const ChaseLevSpec& s : chaselev_scenarios()) {
     md << "- `" << s.name << "` (capacity " << s.capacity << ", owner `" << s.owner_ops << "`, " << s.thieves
        << " thie" << (s.thieves == 1 ? "f" : "ves") << " × " << s.steal_attempts << " steal"
        << (s.steal_attempts == 1 ? "" : "s") << "): " << s.checks << "\n";
   }
   if (o.full) md << "A full search (every schedule Relacy can produce, same cap) follows for every cell.\n";
-  md << "\n## Verdicts\n\n| policy | expected | scenario | search | verdict | executions | s |\n"
-        "|---|---|---|---|---|---|---|\n";
-  js << "{\n  \"verdicts\": [\n";
+  return md.str();
+}
 
-  struct Row {
-    PolicyTable table;
-    bool must_pass;
-  };
-  const std::vector<Row> rows{{table_of<ChaseLevOrders>(), true},
-                              {table_of<BrokenTakeWithoutFence>(), false},
-                              {table_of<BrokenTakeLastWithoutCas>(), false},
-                              {table_of<BrokenPushWithoutRelease>(), false}};
-  bool first_json = true;
-  for (const Row& row : rows) {
-    if (!o.quiet) std::cerr << kProgram << ": " << row.table.name << " …\n";
-    current_table() = row.table;
-    bool row_passed = true;
-    std::ostringstream row_md;
-    for (const ChaseLevSpec& spec : scenarios) {
-      const std::string hist = o.out + "/histories/" + file_safe(row.table.name) + "-" + std::string(spec.name);
-      const Cell random = run_cell(spec, SearchKind::kRandom, o.iterations, 0, 0, hist + "-random.txt");
-      std::vector<Cell> cells{random};
-      if (o.bound > 0) {
-        cells.push_back(run_cell(spec, SearchKind::kContextBound, 0, o.bound, o.cap, hist + "-bound.txt"));
-      }
-      if (o.full) cells.push_back(run_cell(spec, SearchKind::kFull, 0, 0, o.cap, hist + "-full.txt"));
-      bool scenario_passed = true;
-      for (const Cell& c : cells) scenario_passed = scenario_passed && c.passed();
-      row_passed = row_passed && scenario_passed;
-      if (row.must_pass && !scenario_passed) ok = false;
-      if (!o.quiet) {
-        std::cerr << "  " << spec.name;
-        for (const Cell& c : cells) std::cerr << "  [" << name(c.kind) << ": " << c.describe() << ", "
-                                              << c.executions() << " executions, " << seconds_text(c.result.seconds) << " s]";
-        std::cerr << "\n";
-      }
-      for (const Cell& c : cells) {
-        row_md << "| " << row.table.name << " | " << (row.must_pass ? "pass" : "fail (negative control)") << " | `"
-               << spec.name << "` | " << name(c.kind)
-               << (c.kind == SearchKind::kContextBound ? " (bound " + std::to_string(o.bound) + ")" : std::string())
-               << " | " << c.describe() << " | " << c.executions() << " | " << seconds_text(c.result.seconds) << " |\n";
-      }
-      for (const Cell& c : cells) {
-        js << (first_json ? "" : ",\n") << "    {\"policy\": \"" << row.table.name << "\", \"expected_pass\": "
-           << (row.must_pass ? "true" : "false") << ", \"scenario\": \"" << spec.name << "\", \"search\": \""
-           << name(c.kind) << "\", \"bound\": " << (c.kind == SearchKind::kRandom ? 0 : o.bound)
-           << ", \"verdict\": \"" << json_escape(c.describe()) << "\", \"passed\": " << (c.passed() ? "true" : "false")
-           << ", \"capped\": " << (c.result.capped ? "true" : "false") << ", \"executions\": " << c.executions()
-           << ", \"seconds\": " << c.result.seconds << "}";
-        first_json = false;
-      }
-    }
-    const bool as_expected = row_passed == row.must_pass;
-    ok = ok && as_expected;
-    if (!as_expected) row_md << "| " << row.table.name << " | **UNEXPECTED**: " << (row_passed ? "passed" : "failed")
-                             << " | | | | | |\n";
-    md << row_md.str();
-  }
-  md << "\nA negative control must fail somewhere; where one passes a scenario, that scenario cannot reach its defect. "
+constexpr const char* kNotes = R"(
+## Notes
+
+**Erratum of Lê et al. (PPoPP'13).** The one published bug we found is in the resize path of the paper's C11 code, fixed in the benchmark suite of CDSChecker's authors (Norris & Demsky, OOPSLA'13), github.com/computersforpeace/model-checker-benchmarks, `chase-lev-deque-bugfix/deque.c`: its push reloads the array pointer after `resize(q)`, under the comment "Bug in paper...should have next line..."; without the reload, push stores the element into the old array. (We read the fix in that code; we did not read the CDSChecker paper's own account of it.) Our deque has a fixed capacity (no resize), so the bug cannot arise, and the bug fix changes no memory order: ChaseLev keeps the paper's orders (Fig. 1) unchanged. We did not find an erratum text by the authors themselves (searched: ACM/HAL pages of the paper, issue trackers, blog posts); two implementers' pitfalls are also avoided: unsigned indices wrap when take reserves on an empty deque (crossbeam-rs/crossbeam PR #33, review discussion; ours are signed 64-bit), and a thief must read the element before its CAS, because afterwards the buffer may be freed by a resize (crossbeam-rs/crossbeam PR #149) or, in a fixed ring like ours, the slot reused by the owner (ocaml-multicore/domainslib PR #29 makes the same point); ours reads at S4, before S5.
+
+**What Relacy cannot show.** Relacy keeps a bounded history per atomic and never produces load buffering (a load reading a store that depends on a later event of its own thread): B2's acquire guards exactly such an outcome, so its survival is Relacy's limit, not evidence. The scenarios are small (≤ 3 pushes, ≤ 2 thieves, ≤ 2 steals each); the context-bound search is exhaustive only within its bound, and a full search (--full) of the two larger scenarios does not finish within the cap.
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  try {
+    const report::ResultsDir dir(kProgram, o.out);
+    std::filesystem::create_directories(dir.file("histories"));
+    const auto start = std::chrono::steady_clock::now();
+    bool ok = true;
+    const report::Table verdicts = verdict_table(o, ok);
+    std::string md = preamble(o) + "\n## Verdicts\n\n" + verdicts.markdown() +
+        "\nA negative control must fail somewhere; where one passes a scenario, that scenario cannot reach its defect. "
         "Broken:TakeWithoutFence passes `last_element` as core/chase_lev_deque.hpp predicts: with one element both "
         "sides go through a CAS on top and exactly one wins, so the take fence K3 matters only when the owner takes "
         "without a CAS (two or more elements in its view) while a thief's steal took the element below.\n";
-  js << "\n  ],\n  \"mutants\": [\n";
-
-  if (o.mutants) {
-    const auto mutants = one_step_mutants(table_of<ChaseLevOrders>(), Protocol::kChaseLev);
-    md << "\n## Kill matrix: every one-step weakening of ChaseLev\n\n"
-       << "Each mutant: a random search (" << o.mutant_iterations << " iterations) of every scenario"
-       << (o.bound > 0 ? ", then, if nothing was found, the context-bound search (bound " + std::to_string(o.bound) +
-                             ") of every scenario"
-                       : std::string())
-       << ". A survivor must be listed in chaselev_main.cpp with its reason (repeated below).\n\n"
-       << "| site | order | weakened to | killed by | executions | s |\n|---|---|---|---|---|---|\n";
-    for (std::size_t k = 0; k < mutants.size(); ++k) {
-      const Mutant& m = mutants[k];
-      if (!o.quiet) std::cerr << kProgram << ": mutant " << (k + 1) << "/" << mutants.size() << " " << m.table.name << "\n";
-      current_table() = m.table;
-      std::string killed_by;
-      std::uint64_t executions = 0;
-      double seconds = 0;
-      std::vector<SearchKind> kinds{SearchKind::kRandom};
-      if (o.bound > 0) kinds.push_back(SearchKind::kContextBound);
-      bool incomplete = false;
-      for (SearchKind kind : kinds) {
-        for (const ChaseLevSpec& spec : scenarios) {
-          const Cell c = run_cell(spec, kind, o.mutant_iterations, o.bound, o.cap, "");
-          executions += c.executions();
-          seconds += c.result.seconds;
-          incomplete = incomplete || c.result.capped;
-          if (c.result.verdict != Verdict::kPass) {
-            killed_by = c.describe() + ", in " + std::string(spec.name) + " (" + std::string(name(kind)) + ")";
-            break;
-          }
-        }
-        if (!killed_by.empty()) break;
-      }
-      const bool killed = !killed_by.empty();
-      const ExpectedSurvivor* listed = find_survivor(m.table.name);
-      const bool as_expected = killed ? listed == nullptr : (listed != nullptr && !incomplete);
-      ok = ok && as_expected;
-      std::string verdict = killed ? killed_by
-                                   : std::string("**survived**") + (incomplete ? " (a search was capped)" : "") +
-                                         (listed ? ": " + std::string(listed->why) : std::string(" — not listed"));
-      if (!as_expected) verdict += " **UNEXPECTED**";
-      if (!o.quiet) std::cerr << "  " << verdict << "\n";
-      md << "| " << info(m.site).label << " " << info(m.site).name << " | " << m.from << " | " << m.to << " | "
-         << verdict << " | " << executions << " | " << seconds_text(seconds) << " |\n";
-      js << "    {\"site\": \"" << info(m.site).label << "\", \"from\": \"" << m.from << "\", \"to\": \"" << m.to
-         << "\", \"killed\": " << (killed ? "true" : "false") << ", \"by\": \"" << json_escape(killed ? killed_by : verdict)
-         << "\", \"as_expected\": " << (as_expected ? "true" : "false") << ", \"executions\": " << executions
-         << ", \"seconds\": " << seconds << "}" << (k + 1 < mutants.size() ? "," : "") << "\n";
+    report::Json js = report::document(kProgram, 2, "model-checked (bounded search)", FRONTSTEAL_GIT_COMMIT);
+    js["verdicts"] = verdicts.json();
+    js["mutants"] = report::Json::array();
+    if (o.mutants) {
+      const report::Table kills = kill_table(o, ok);
+      md += "\n## Kill matrix: every one-step weakening of ChaseLev\n\nEach mutant: a random search (" +
+            std::to_string(o.mutant_iterations) + " iterations) of every scenario" +
+            (o.bound > 0 ? ", then, if nothing was found, the context-bound search (bound " + std::to_string(o.bound) +
+                               ") of every scenario" : std::string()) +
+            ". A survivor must be listed in chaselev_main.cpp with its reason (repeated below).\n\n" + kills.markdown();
+      js["mutants"] = kills.json();
     }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    js["all_as_expected"] = ok;
+    js["seconds"] = seconds;
+    md += kNotes;
+    md += "\n" + std::string(ok ? "Every verdict as expected." : "**Some verdicts were not as expected.**") + " Run time " +
+          std::to_string(static_cast<int>(seconds)) + " s. Failing executions' histories: histories/.\n";
+    dir.write("chaselev.md", md);
+    dir.write_json("chaselev.json", js);
+    std::cout << md;
+    if (!o.quiet) std::cerr << kProgram << ": wrote " << o.out << "/chaselev.{md,json}\n";
+    return ok ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::cerr << kProgram << ": " << e.what() << "\n";
+    return 1;
   }
-  md << "\n## Notes\n\n"
-     << "**Erratum of Lê et al. (PPoPP'13).** The one published bug we found is in the resize path of the paper's C11 "
-        "code, fixed in the benchmark suite of CDSChecker's authors (Norris & Demsky, OOPSLA'13), "
-        "github.com/computersforpeace/model-checker-benchmarks, `chase-lev-deque-bugfix/deque.c`: its push reloads "
-        "the array pointer after `resize(q)`, under the comment \"Bug in paper...should have next line...\"; without "
-        "the reload, push stores the element into the old array. (We read the fix in that code; we did not read the "
-        "CDSChecker paper's own account of it.) Our deque has a fixed capacity (no resize), "
-        "so the bug cannot arise, and the bug fix changes no memory order: ChaseLev keeps the paper's orders "
-        "(Fig. 1) unchanged. We did not find an erratum text by the authors themselves (searched: ACM/HAL pages of "
-        "the paper, issue trackers, blog posts); two implementers' pitfalls are also avoided: unsigned indices "
-        "wrap when take reserves on an empty deque (crossbeam-rs/crossbeam PR #33, review discussion; ours are signed "
-        "64-bit), and a thief must read the element before its CAS, because afterwards the buffer may be freed by "
-        "a resize (crossbeam-rs/crossbeam PR #149) or, in a fixed ring like ours, the slot reused by the owner "
-        "(ocaml-multicore/domainslib PR #29 makes the same point); ours reads at S4, before S5.\n\n"
-     << "**What Relacy cannot show.** Relacy keeps a bounded history per atomic and never produces load buffering "
-        "(a load reading a store that depends on a later event of its own thread): B2's acquire guards exactly such "
-        "an outcome, so its survival is Relacy's limit, not evidence. The scenarios are small (≤ 3 pushes, ≤ 2 "
-        "thieves, ≤ 2 steals each); the context-bound search is exhaustive only within its bound, and a full search "
-        "(--full) of the two larger scenarios does not finish within the cap.\n";
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  js << "  ],\n  \"all_as_expected\": " << (ok ? "true" : "false") << ",\n  \"seconds\": " << seconds << "\n}\n";
-  md << "\n" << (ok ? "Every verdict as expected." : "**Some verdicts were not as expected.**") << " Run time "
-     << static_cast<int>(seconds) << " s. Failing executions' histories: histories/.\n";
-  std::ofstream(o.out + "/chaselev.md") << md.str();
-  std::ofstream(o.out + "/chaselev.json") << js.str();
-  std::cout << md.str();
-  if (!o.quiet) std::cerr << kProgram << ": wrote " << o.out << "/chaselev.{md,json}\n";
-  return ok ? 0 : 1;
 }

@@ -1,5 +1,5 @@
-// report_text.hpp — the text the Relacy checkers' reports share: JSON string escaping and the one-cell
-// summary of a search. Free of Relacy (the mains include it; only the suites include Relacy).
+// report_text.hpp — the text the Relacy checkers' reports share: the one-cell summary of a search (JSON goes
+// through reporting/, nlohmann-json). Free of Relacy (the mains include it; only the suites include Relacy).
 #pragma once
 
 #include <string>
@@ -8,20 +8,6 @@
 #include "models_check/search.hpp"
 
 namespace frontsteal::model {
-
-// A string as the inside of a JSON string literal: quotes, backslashes and newlines escaped.
-inline std::string json_escape(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out;
-}
 
 // "100000 it" for a random search; "N done + M discarded" for a tree search (with "capped" if it hit the cap,
 // and where it stopped if it found a failure).
