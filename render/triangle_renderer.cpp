@@ -131,6 +131,8 @@ void TriangleRenderer::upload(std::uint32_t c, std::span<const tess::TriangleBuf
 
 void TriangleRenderer::begin_frame(const glm::dmat4& view_projection, const glm::dvec3& eye) {
   glClearColor(kBackground[0] / 255.0f, kBackground[1] / 255.0f, kBackground[2] / 255.0f, 1.0f);
+  // Depth test on every frame, not only at construction: in a window the overlay (Dear ImGui) shares the context.
+  glEnable(GL_DEPTH_TEST);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glUseProgram(program_);
   const glm::mat4 vp(view_projection);

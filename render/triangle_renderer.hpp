@@ -2,7 +2,9 @@
 // buffer per component, replaced whole when the component's published triangles change), Lambert shading with
 // a head light, one colour per component, and reads the image back.
 //
-// Needs a current context (HeadlessGL::make_current) on the calling thread for every call, the destructor too.
+// Needs a current OpenGL 3.3 core context on the calling thread for every call, the destructor too: HeadlessGL's
+// (EGL, its framebuffer object bound by make_current) or a window's (frontsteal-view: GLFW, the default
+// framebuffer). It draws into whatever framebuffer and viewport are bound; read_pixels reads the bound one.
 #pragma once
 
 #include <cstdint>
