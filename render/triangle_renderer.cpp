@@ -152,7 +152,9 @@ std::uint64_t TriangleRenderer::draw(std::uint32_t c) {
 
 void TriangleRenderer::finish() const { glFinish(); }
 
-Image TriangleRenderer::read_pixels(int width, int height) const {
+Image TriangleRenderer::read_pixels(int width, int height) const { return read_framebuffer(width, height); }
+
+Image read_framebuffer(int width, int height) {
   Image image(width, height);
   std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * height * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -49,4 +49,8 @@ class TriangleRenderer {
   std::vector<std::uint32_t> index_scratch_;
 };
 
+// The bound framebuffer's lower-left width × height pixels (rows top to bottom): what a window shows, overlay
+// included, when called before the buffer swap. Needs a current context.
+Image read_framebuffer(int width, int height);
+
 }  // namespace frontsteal::render
