@@ -65,6 +65,19 @@ class ArgReader {
   std::string_view flag_;
 };
 
+// "WxH" with both sides within [min_side, max_side] (image and window sizes), or a usage error naming `flag`.
+struct Size {
+  int width = 0, height = 0;
+};
+inline Size parse_size(std::string_view program, std::string_view flag, std::string_view text, int min_side, int max_side) {
+  const auto x = text.find('x');
+  if (x == std::string_view::npos) {
+    usage_error(program, std::string(flag) + " expects WxH, e.g. 640x360, got '" + std::string(text) + "'");
+  }
+  return {parse_number<int>(program, flag, text.substr(0, x), min_side, max_side),
+          parse_number<int>(program, flag, text.substr(x + 1), min_side, max_side)};
+}
+
 inline std::vector<std::string> split_list(std::string_view s) {
   std::vector<std::string> out;
   while (!s.empty()) {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -14,8 +15,7 @@
 #include "core/cli_args.hpp"
 #include "render/greedy_renderer.hpp"
 #include "render/headless_gl.hpp"
-#include "tessellate/components.hpp"
-#include "tessellate/scene_generator.hpp"
+#include "render/render_scene.hpp"
 
 namespace ts = frontsteal::tess;
 namespace rd = frontsteal::render;
@@ -89,11 +89,9 @@ Options parse(int argc, char** argv) {
     } else if (a == "--slots") {
       o.greedy.slots = cli::parse_number<std::uint32_t>(kProgram, a, args.value(), 2, 16);
     } else if (a == "--size") {
-      const std::string_view v = args.value();
-      const auto x = v.find('x');
-      if (x == std::string_view::npos) cli::usage_error(kProgram, "--size expects WxH, e.g. 640x360, got '" + std::string(v) + "'");
-      o.greedy.width = cli::parse_number<int>(kProgram, a, v.substr(0, x), 16, 8192);
-      o.greedy.height = cli::parse_number<int>(kProgram, a, v.substr(x + 1), 16, 8192);
+      const cli::Size size = cli::parse_size(kProgram, a, args.value(), 16, 8192);
+      o.greedy.width = size.width;
+      o.greedy.height = size.height;
     } else if (a == "--tolerance") {
       o.greedy.settings.pixel_tolerance = cli::parse_number<double>(kProgram, a, args.value(), 0.05, 100);
     } else if (a == "--samples") {
@@ -125,21 +123,9 @@ std::string fixed(double v, int digits) {
 
 int main(int argc, char** argv) {
   Options o = parse(argc, argv);
-  ts::Model model;
-  try {
-    model = ts::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
-  } catch (const std::exception& e) {
-    std::cerr << kProgram << ": cannot load scene '" << o.scene << "': " << e.what() << '\n';
-    return 2;
-  }
-  if (model.surfaces.empty()) {
-    std::cerr << kProgram << ": scene '" << o.scene << "' has no surfaces\n";
-    return 2;
-  }
-  if (std::any_of(model.surfaces.begin(), model.surfaces.end(), [](const ts::Surface& s) { return s.component < 0; })) {
-    const ts::Box box = ts::model_box(model);
-    ts::assign_components(model, 1e-6 * std::max(1.0, glm::length(box.hi - box.lo)));
-  }
+  const std::optional<ts::Model> loaded = rd::load_render_scene_or_report(kProgram, o.scene, FRONTSTEAL_DATA_DIR);
+  if (!loaded) return 2;
+  const ts::Model& model = *loaded;
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   if (ec) {

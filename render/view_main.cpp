@@ -4,11 +4,12 @@
 // (render/live_greedy.hpp, render/greedy_pipeline.hpp: the same code). GLFW window, Dear ImGui overlay.
 //
 // Exit status: 0 on window close, Escape, --frames or Ctrl-C (SIGINT / SIGTERM set a flag the loop checks; GL and
-// GLFW are torn down in order); 2 on a usage error; 3 when there is no display or no OpenGL 3.3 context.
+// GLFW are torn down in order); 2 on a usage error (CLI11); 3 when there is no display or no OpenGL 3.3 context.
 #define GL_GLEXT_PROTOTYPES 1
 #define GLFW_INCLUDE_GLEXT
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+#include <CLI/CLI.hpp>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
@@ -18,17 +19,17 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
 
 #include "core/cli_args.hpp"
 #include "render/image.hpp"
 #include "render/live_greedy.hpp"
+#include "render/render_scene.hpp"
 #include "render/triangle_renderer.hpp"
 #include "render/view_camera.hpp"
 #include "tessellate/camera_path.hpp"
-#include "tessellate/components.hpp"
-#include "tessellate/scene_generator.hpp"
 
 namespace ts = frontsteal::tess;
 namespace rd = frontsteal::render;
@@ -52,28 +53,11 @@ constexpr const char* kKeys = R"(  mouse drag (left)    orbit around the target
   Escape, Q            quit
 )";
 
-constexpr std::string_view kUsage = R"(usage: frontsteal-view [options]
-
-Greedy rendering (paper §5) live in a window: tessellators (the stealing scheduler, or any exactly-once scheduler
-of the registry) re-tessellate the scene for the newest view while the pusher draws every frame with whatever
-each component last published. Same pusher and tessellation code as frontsteal-render. An overlay shows the
-update rate, the tessellation rate, the lag and the steals per tessellation frame.
-
-options:
-  --scene S          teapot, teacup, teaspoon, plant:<N>[:seed] or a model file            (default teapot)
-  --size WxH         window size                                                         (default 960x600)
-  --tolerance PX     screen-space tessellation tolerance, pixels                                (default 1)
-  --tessellators P   tessellator threads                                    (default cores - 1, at least 1)
-  --scheduler NAME   stealing/Fenced, chase-lev, queue-mutex, ... (exactly-once ones)  (default stealing/Fenced)
-  --synchronized     start synchronized (T toggles)
-  --no-overlay       start with the overlay hidden (H toggles)
-  --rate R           at most R frames per second; 0: as fast as it can                       (default 60)
-  --screenshot FILE  where P writes the window (PNG); with --frames, also written after the last frame
-  --frames N         exit after N frames (tests, screenshots)                          (default 0: run on)
-  --help             this text
-
-keys:
-)";
+constexpr const char* kAbout = R"(Greedy rendering (paper §5) live in a window: tessellators (the stealing scheduler, or any exactly-once
+scheduler of the registry) re-tessellate the scene for the newest view while the pusher draws every frame with
+whatever each component last published. Same pusher and tessellation code as frontsteal-render. An overlay shows
+the update rate, the tessellation rate, the lag and the steals per tessellation frame. Exit status: 0 on window
+close, Escape, --frames or Ctrl-C; 2 on a usage error; 3 without a display or an OpenGL 3.3 context.)";
 
 struct Options {
   std::string scene = "teapot";
@@ -88,47 +72,39 @@ struct Options {
 };
 
 Options parse(int argc, char** argv) {
-  namespace cli = frontsteal::cli;
   Options o;
   o.tessellators = std::max(1u, std::thread::hardware_concurrency() - 1);
-  static const std::string usage = std::string(kUsage) + kKeys;
-  cli::ArgReader args(argc, argv, kProgram, usage);
-  while (args.next()) {
-    const std::string_view a = args.flag();
-    if (a == "--scene") {
-      o.scene = args.value();
-    } else if (a == "--size") {
-      const std::string_view v = args.value();
-      const auto x = v.find('x');
-      if (x == std::string_view::npos) cli::usage_error(kProgram, "--size expects WxH, e.g. 960x600, got '" + std::string(v) + "'");
-      o.width = cli::parse_number<int>(kProgram, a, v.substr(0, x), 64, 8192);
-      o.height = cli::parse_number<int>(kProgram, a, v.substr(x + 1), 64, 8192);
-    } else if (a == "--tolerance") {
-      o.tolerance = cli::parse_number<double>(kProgram, a, args.value(), 0.05, 100);
-    } else if (a == "--tessellators") {
-      o.tessellators = cli::parse_number<frontsteal::WorkerId>(kProgram, a, args.value(), 1, 256);
-    } else if (a == "--scheduler") {
-      o.scheduler = args.value();
-      const auto names = rd::LiveGreedy::scheduler_names();
-      if (std::find(names.begin(), names.end(), o.scheduler) == names.end()) {
-        std::string list;
-        for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
-        cli::usage_error(kProgram, "--scheduler is one of " + list + "; got '" + o.scheduler + "'");
-      }
-    } else if (a == "--synchronized") {
-      o.synchronized = true;
-    } else if (a == "--no-overlay") {
-      o.overlay = false;
-    } else if (a == "--rate") {
-      o.rate = cli::parse_number<double>(kProgram, a, args.value(), 0, 10000);
-    } else if (a == "--screenshot") {
-      o.screenshot = args.value();
-    } else if (a == "--frames") {
-      o.frames = cli::parse_number<int>(kProgram, a, args.value(), 0, 100'000'000);
-    } else {
-      cli::usage_error(kProgram, "unknown option '" + std::string(a) + "'");
-    }
+  std::string size = "960x600";
+  bool no_overlay = false;
+  CLI::App app(kAbout, std::string(kProgram));
+  app.footer(std::string("keys:\n") + kKeys);
+  app.add_option("--scene", o.scene, "teapot, teacup, teaspoon, plant:<N>[:seed] or a model file")->capture_default_str();
+  app.add_option("--size", size, "window size WxH")->capture_default_str();
+  app.add_option("--tolerance", o.tolerance, "screen-space tessellation tolerance, pixels")
+      ->check(CLI::Range(0.05, 100.0))->capture_default_str();
+  app.add_option("--tessellators", o.tessellators, "tessellator threads (default: cores - 1, at least 1)")
+      ->check(CLI::Range(1u, 256u))->capture_default_str();
+  app.add_option("--scheduler", o.scheduler, "scheduler of the tessellators (the registry's exactly-once ones)")
+      ->check(CLI::IsMember(rd::LiveGreedy::scheduler_names()))->capture_default_str();
+  app.add_flag("--synchronized", o.synchronized, "start synchronized (T toggles)");
+  app.add_flag("--no-overlay", no_overlay, "start with the overlay hidden (H toggles)");
+  app.add_option("--rate", o.rate, "at most R frames per second; 0: as fast as it can")
+      ->check(CLI::Range(0.0, 10000.0))->capture_default_str();
+  app.add_option("--screenshot", o.screenshot, "where P writes the window (PNG); with --frames, also after the last frame");
+  app.add_option("--frames", o.frames, "exit after N frames (tests, screenshots); 0: run on")
+      ->check(CLI::Range(0, 100'000'000))->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    std::exit(0);
+  } catch (const CLI::ParseError& e) {
+    frontsteal::cli::usage_error(kProgram, e.what());  // exit 2, as every frontsteal command
   }
+  const frontsteal::cli::Size window = frontsteal::cli::parse_size(kProgram, "--size", size, 64, 8192);
+  o.width = window.width;
+  o.height = window.height;
+  o.overlay = !no_overlay;
   return o;
 }
 
@@ -287,21 +263,9 @@ std::string gl_string(GLenum name) {
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  ts::Model model;
-  try {
-    model = ts::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
-  } catch (const std::exception& e) {
-    std::cerr << kProgram << ": cannot load scene '" << o.scene << "': " << e.what() << '\n';
-    return 2;
-  }
-  if (model.surfaces.empty()) {
-    std::cerr << kProgram << ": scene '" << o.scene << "' has no surfaces\n";
-    return 2;
-  }
-  if (std::any_of(model.surfaces.begin(), model.surfaces.end(), [](const ts::Surface& s) { return s.component < 0; })) {
-    const ts::Box box = ts::model_box(model);
-    ts::assign_components(model, 1e-6 * std::max(1.0, glm::length(box.hi - box.lo)));
-  }
+  const std::optional<ts::Model> loaded = rd::load_render_scene_or_report(kProgram, o.scene, FRONTSTEAL_DATA_DIR);
+  if (!loaded) return 2;
+  const ts::Model& model = *loaded;
 
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);

@@ -11,30 +11,32 @@
 
 #include "render/headless_gl.hpp"
 #include "render/live_greedy.hpp"
+#include "render/render_scene.hpp"
 #include "render/triangle_renderer.hpp"
 #include "render/view_camera.hpp"
 #include "tessellate/camera_path.hpp"
-#include "tessellate/components.hpp"
-#include "tessellate/scene_generator.hpp"
 
 namespace ts = frontsteal::tess;
 namespace rd = frontsteal::render;
 
 namespace {
 
-ts::Model teapot() {
-  ts::Model m = ts::load_scene("teapot", FRONTSTEAL_DATA_DIR);
-  ts::assign_components(m, 1e-6);
-  return m;
-}
+// The teapot, its camera and a 160 x 96 headless context current on this thread for the test's lifetime.
+struct Headless {
+  ts::Model model = rd::load_render_scene("teapot", FRONTSTEAL_DATA_DIR);
+  rd::ViewCamera view{ts::model_box(model)};
+  rd::HeadlessGL gl{160, 96};
+  Headless() { gl.make_current(); }
+  ~Headless() { gl.release(); }
+  ts::Camera camera() const { return view.camera(160, 96); }
+};
 
 }  // namespace
 
 TEST_CASE("live greedy rendering: synchronized updates show their own view") {
-  const ts::Model m = teapot();
-  rd::ViewCamera view(ts::model_box(m));
-  rd::HeadlessGL gl(160, 96);
-  gl.make_current();
+  Headless h;
+  const ts::Model& m = h.model;
+  rd::ViewCamera& view = h.view;
   {
     rd::LiveGreedy live(m, 1, 3, "stealing/Fenced", {});
     live.set_synchronized(true);
@@ -61,25 +63,21 @@ TEST_CASE("live greedy rendering: synchronized updates show their own view") {
     CHECK(live.counters().inconsistencies == 0);
     live.stop_drawing();
   }
-  gl.release();
 }
 
 TEST_CASE("live greedy rendering: lagging updates catch up when the camera stops, on every scheduler") {
-  const ts::Model m = teapot();
-  rd::ViewCamera view(ts::model_box(m));
-  rd::HeadlessGL gl(160, 96);
-  gl.make_current();
+  Headless h;
   {
-    rd::LiveGreedy live(m, 2, 3, "stealing/Fenced", {});
+    rd::LiveGreedy live(h.model, 2, 3, "stealing/Fenced", {});
     live.start_drawing();
     const auto names = rd::LiveGreedy::scheduler_names();
     REQUIRE(std::find(names.begin(), names.end(), "stealing/Paper") == names.end());  // at-least-once: left out
     CHECK_THROWS_AS(live.set_scheduler("stealing/Paper"), std::invalid_argument);
-    for (const std::string& name : {std::string("queue-mutex"), std::string("chase-lev"), std::string("stealing/SeqCst")}) {
+    for (const std::string& name : names) {  // every scheduler the viewer's C key cycles through
       INFO(name);
       live.set_scheduler(name);
-      view.orbit(20, 5);
-      const ts::Camera cam = view.camera(160, 96);
+      h.view.orbit(20, 5);
+      const ts::Camera cam = h.camera();
       rd::UpdateRecord rec = live.update(cam);  // may show older views: never waits
       // The camera stands still: within a generous bound the pusher draws the current view everywhere.
       for (int k = 0; k < 20000 && !(rec.max_lag == 0 && rec.triangles > 0); ++k) {
@@ -91,11 +89,10 @@ TEST_CASE("live greedy rendering: lagging updates catch up when the camera stops
     }
     live.stop_drawing();
   }
-  gl.release();
 }
 
 TEST_CASE("the viewer's camera is a pure function of its steps") {
-  const ts::Model m = teapot();
+  const ts::Model m = rd::load_render_scene("teapot", FRONTSTEAL_DATA_DIR);
   rd::ViewCamera a(ts::model_box(m)), b(ts::model_box(m));
   for (rd::ViewCamera* v : {&a, &b}) {
     v->zoom(2);
