@@ -85,6 +85,8 @@ TEST_CASE("live greedy rendering: lagging updates catch up when the camera stops
         rec = live.update(cam);
       }
       CHECK(rec.max_lag == 0);
+      // Components are published inside the frame, the counters after it: wait for them too (bounded).
+      for (int k = 0; k < 20000 && live.counters().scheduler != name; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(1));
       CHECK(live.counters().scheduler == name);
     }
     live.stop_drawing();

@@ -3,7 +3,8 @@
 # xdotool (XTEST, as a user's keyboard), the viewer's screenshot against the headless EGL render of the camera it
 # printed (view_reference: silhouette IoU >= 0.97, as greedy_renderer_test), two negative controls that must fail
 # the same check (the camera before the input, and the view turned 40 degrees), and the exit paths: WM_DELETE_WINDOW
-# (a window manager's close button) -> 0, Escape -> 0, SIGINT -> 0, no DISPLAY -> 3, an unknown flag -> 2.
+# (a window manager's close button) -> 0, Escape -> 0, SIGINT -> 0, no DISPLAY or one with no server -> 3, an
+# unknown flag -> 2.
 #
 # usage: view_xvfb_test.sh FRONTSTEAL_VIEW VIEW_REFERENCE X11_CLOSE_WINDOW WORK_DIR
 set -u
@@ -32,13 +33,19 @@ DISPLAY=":$(head -n 1 "$work/display")"
 export DISPLAY
 echo "Xvfb on $DISPLAY"
 
+# A DISPLAY that names no server: GLFW cannot start, exit 3 with a message.
+DISPLAY=":$(( $(head -n 1 "$work/display") + 1000 ))" "$view" --frames 1 > "$work/nodisplay2.out" 2>&1
+rc=$?
+[ $rc -eq 3 ] && grep -q "no display: GLFW could not start" "$work/nodisplay2.out" && pass "unreachable DISPLAY: exit 3" \
+  || { cat "$work/nodisplay2.out"; fail "unreachable DISPLAY: exit $rc, want 3"; }
+
 # Starts the viewer in the background (pid in $pid) and waits for its window (id in $wid).
 start_viewer() {  # $1: output stem, rest: flags
   stem=$1; shift
   "$view" --scene teapot --size 320x240 --tessellators 1 --rate 30 "$@" > "$work/$stem.out" 2>&1 &
   pid=$!
   wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^frontsteal-view$' | head -n 1)
-  [ -n "$wid" ] || { cat "$work/$stem.out"; fail "$stem: no window"; return 1; }
+  [ -n "$wid" ] || { cat "$work/$stem.out"; fail "$stem: no window"; kill -KILL "$pid" 2>/dev/null; wait "$pid"; return 1; }
 }
 # Waits (at most 90 s) for the viewer to exit; its status in $rc.
 wait_exit() {
