@@ -6,8 +6,8 @@
 //                  publication (core/component_publication.hpp), and which view each slot was tessellated for.
 //   GreedyPusher   the pusher's update: begin_update, read each component's slot once, upload it if it changed,
 //                  draw, end_update. It never waits for tessellators. It draws with TriangleRenderer in
-//                  whatever OpenGL context is current on its thread (an EGL pbuffer-less context of HeadlessGL,
-//                  or a GLFW window's), or, without a renderer, only counts.
+//                  whatever OpenGL context is current on its thread (HeadlessGL's surfaceless EGL context and
+//                  framebuffer object, or a GLFW window's default framebuffer), or, without a renderer, only counts.
 //
 // View ids: the driver tags every tessellation frame with the id of the view it was started for; the pusher's
 // lag of a component is 0 when its triangles are for the current view, else (update − view id). The batch run

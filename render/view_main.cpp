@@ -333,6 +333,9 @@ int main(int argc, char** argv) {
     Rates rates;
     int screenshots = 0;
     const auto start = std::chrono::steady_clock::now();
+    const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(o.rate > 0 ? 1.0 / o.rate : 0.0));
+    auto next_frame = start;
     try {
       live.start_drawing();
       for (int frame = 0;; ++frame) {
@@ -378,9 +381,9 @@ int main(int argc, char** argv) {
           state.message = "wrote " + path;
         }
         glfwSwapBuffers(window);
-        if (o.rate > 0) {
-          std::this_thread::sleep_until(start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                    std::chrono::duration<double>((frame + 1) / o.rate)));
+        if (o.rate > 0) {  // at most --rate frames per second; a late frame is not made up by a burst
+          next_frame = std::max(next_frame + period, std::chrono::steady_clock::now());
+          std::this_thread::sleep_until(next_frame);
         }
       }
     } catch (const std::exception& e) {
