@@ -83,8 +83,9 @@ void on_char(GLFWwindow* w, unsigned codepoint) {
 void on_mouse_button(GLFWwindow* w, int button, int action, int) {
   ViewControls& s = controls_of(w);
   if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+  // The drag starts at the position of the last motion event (not a query of the pointer now, which may be
+  // ahead of the events not yet handled): the orbit is the sum of the event deltas, the same on every run.
   s.dragging = action == GLFW_PRESS && !ImGui::GetIO().WantCaptureMouse;
-  glfwGetCursorPos(w, &s.last_x, &s.last_y);
 }
 
 void on_cursor(GLFWwindow* w, double x, double y) {

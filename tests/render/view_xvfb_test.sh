@@ -1,6 +1,6 @@
 #!/bin/sh
 # view_xvfb_test.sh — frontsteal-view tested for real (ctest render.view_xvfb): under its own Xvfb, input through
-# xdotool (XTEST, as a user's keyboard), the viewer's screenshot against the headless EGL render of the camera it
+# xdotool (XTEST, as a user's keyboard and mouse), the viewer's screenshot against the headless EGL render of the camera it
 # printed (view_reference: silhouette IoU >= 0.97, as greedy_renderer_test), two negative controls that must fail
 # the same check (the camera before the input, and the view turned 40 degrees), and the exit paths: WM_DELETE_WINDOW
 # (a window manager's close button) -> 0, Escape -> 0, SIGINT -> 0, no DISPLAY or one with no server -> 3, an
@@ -59,8 +59,12 @@ wait_exit() {
 # --- 1. input, screenshot, silhouette against the headless render; close like a window manager ----------------
 if start_viewer keys --no-overlay --screenshot "$work/view.png"; then
   xdotool windowfocus --sync "$wid" 2>/dev/null
-  # T: synchronized (the screenshot is then tessellated for its own view); Z Z: zoom in two steps; W, D: walk.
-  xdotool key --delay 50 t z z w d
+  # T: synchronized (the screenshot is then tessellated for its own view); the wheel up once and Z: zoom in two
+  # steps; a left-button drag 40 pixels to the right: orbit 12 degrees; W, D: walk.
+  xdotool key t
+  xdotool mousemove --window "$wid" 100 100 click 4
+  xdotool mousedown 1 mousemove_relative 20 0 mousemove_relative 20 0 mouseup 1
+  xdotool key --delay 50 z w d
   xdotool key p
   i=0
   while ! grep -q "screenshot" "$work/keys.out" && [ $i -lt 600 ]; do sleep 0.1; i=$((i + 1)); done
