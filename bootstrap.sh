@@ -34,6 +34,12 @@ packages=(
   gnuplot-nox
   # greedy rendering (render/): headless OpenGL through EGL (Mesa's llvmpipe without a GPU), PNG output
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
+  # the interactive viewer frontsteal-view (render/view_main.cpp): GLFW windows, Dear ImGui (Debian's libimgui.a
+  # holds the glfw and opengl3 backends; its font atlas needs stb's library)
+  libglfw3-dev libimgui-dev libstb-dev
+  # its test under a virtual X server (tests/render/view_xvfb_test.sh): Xvfb, xdotool for the input, Xlib for
+  # the WM_DELETE_WINDOW sender (tests/render/x11_close_window.cpp)
+  xvfb xdotool libx11-dev
 )
 
 missing=()

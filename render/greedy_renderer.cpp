@@ -9,10 +9,8 @@
 #include <stdexcept>
 #include <thread>
 
-#include "core/component_publication.hpp"
-#include "core/publication_policies.hpp"
 #include "core/stealing_scheduler.hpp"
-#include "core/std_backend.hpp"
+#include "render/greedy_pipeline.hpp"
 #include "render/headless_gl.hpp"
 #include "render/triangle_renderer.hpp"
 
@@ -21,120 +19,8 @@ namespace frontsteal::render {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using Publication = ComponentPublication<StdBackend, PublicationOrders>;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// Everything both modes share: the model's per-frame inputs, the slots' triangle buffers, the publication.
-struct Session {
-  const tess::Model& model;
-  const GreedyOptions& options;
-  tess::Box box;
-  std::vector<tess::PreparedSurface> prepared;
-  std::vector<std::vector<ItemId>> component_surfaces;  // component -> its surfaces
-  std::vector<std::vector<tess::TriangleBuffers>> buffers;  // [slot][surface]
-  std::vector<std::vector<int>> slot_view;  // [component][slot]: path frame the slot was tessellated for
-  std::unique_ptr<Publication> publication;
-  // Surface tessellations whose own audit failed (surface_tessellator.hpp, step 6); tessellators add, the
-  // driver reads after they stopped. Relaxed: a count, ordered by the threads' join.
-  std::atomic<std::uint64_t> inconsistencies{0};
-
-  Session(const tess::Model& m, const GreedyOptions& o) : model(m), options(o), box(tess::model_box(m)) {
-    int components = 0;
-    for (const tess::Surface& s : m.surfaces) {
-      if (s.component < 0) throw std::invalid_argument("greedy rendering needs components (tess::assign_components)");
-      components = std::max(components, s.component + 1);
-    }
-    component_surfaces.resize(static_cast<std::size_t>(components));
-    for (ItemId id = 0; id < m.surfaces.size(); ++id) {
-      prepared.push_back(tess::prepare_surface(m.surfaces[id]));
-      component_surfaces[static_cast<std::size_t>(m.surfaces[id].component)].push_back(id);
-    }
-    std::vector<std::uint32_t> sizes;
-    for (const auto& list : component_surfaces) sizes.push_back(static_cast<std::uint32_t>(list.size()));
-    publication = std::make_unique<Publication>(sizes, o.slots);
-    buffers.assign(o.slots, std::vector<tess::TriangleBuffers>(m.surfaces.size()));
-    slot_view.assign(sizes.size(), std::vector<int>(o.slots, -1));
-  }
-
-  ComponentId components() const { return static_cast<ComponentId>(component_surfaces.size()); }
-  tess::Camera camera(int update) const {
-    return tess::camera_on(options.path, box, update, options.updates, options.width, options.height);
-  }
-  // Driver, between frames: back slots for a frame tessellated for path frame `view`.
-  std::uint64_t prepare(int view) {
-    const std::uint64_t waits = publication->prepare_frame();
-    for (ComponentId c = 0; c < components(); ++c) slot_view[c][publication->back_slot(c)] = view;
-    return waits;
-  }
-  // Tessellator: one surface into its component's back slot, then the component's count-down (and swap).
-  void tessellate(ItemId id, const tess::Camera& camera, const tess::Frustum& frustum, tess::TessellationScratch& scratch) {
-    const auto c = static_cast<ComponentId>(model.surfaces[id].component);
-    const tess::SurfaceResult r =
-        tess::tessellate_surface(prepared[id], camera, frustum, options.settings, scratch, buffers[publication->back_slot(c)][id]);
-    if (r.inconsistencies() > 0) inconsistencies.fetch_add(1, std::memory_order::relaxed);
-    publication->finish_surface(c);
-  }
-};
-
-// The pusher's side: one update, with OpenGL or counting only.
-class Pusher {
- public:
-  Pusher(Session& s, HeadlessGL* gl) : s_(s), gl_(gl), uploaded_(s.components(), {Publication::kNothing, -1}) {
-    if (gl_ != nullptr) renderer_ = std::make_unique<TriangleRenderer>(s.components());
-  }
-
-  UpdateRecord update(int u, bool capture, Image* image) {
-    UpdateRecord rec;
-    rec.update = u;
-    const auto t0 = Clock::now();
-    const tess::Camera cam = s_.camera(u);
-    s_.publication->begin_update();
-    if (renderer_) renderer_->begin_frame(cam.view_projection(), cam.eye);
-    double lag_sum = 0;
-    int drawn = 0;
-    for (ComponentId c = 0; c < s_.components(); ++c) {
-      const SlotIndex slot = s_.publication->read(c);  // ComponentTris(c), read once
-      if (slot == Publication::kNothing) continue;
-      const int view = s_.slot_view[c][slot];
-      const std::pair<SlotIndex, int> key{slot, view};
-      if (renderer_) {
-        if (uploaded_[c] != key) {
-          surfaces_.clear();
-          for (ItemId id : s_.component_surfaces[c]) surfaces_.push_back(&s_.buffers[slot][id]);
-          renderer_->upload(c, surfaces_);
-          ++rec.uploads;
-        }
-        rec.triangles += renderer_->draw(c);
-      } else {
-        rec.uploads += uploaded_[c] != key;
-        for (ItemId id : s_.component_surfaces[c]) rec.triangles += s_.buffers[slot][id].triangle_count();
-      }
-      uploaded_[c] = key;
-      const int lag = u - view;
-      lag_sum += lag;
-      rec.max_lag = std::max(rec.max_lag, lag);
-      ++drawn;
-    }
-    if (renderer_) {
-      if (capture && image != nullptr) *image = renderer_->read_pixels(gl_->width(), gl_->height());
-      else renderer_->finish();
-    }
-    s_.publication->end_update();
-    rec.mean_lag = drawn > 0 ? lag_sum / drawn : 0;
-    rec.draw_ms = 1e3 * seconds_since(t0);
-    return rec;
-  }
-
-  TriangleRenderer* renderer() { return renderer_.get(); }
-
- private:
-  Session& s_;
-  HeadlessGL* gl_;
-  std::unique_ptr<TriangleRenderer> renderer_;
-  std::vector<std::pair<SlotIndex, int>> uploaded_;  // (slot, view) each component's GL buffers hold
-  std::vector<const tess::TriangleBuffers*> surfaces_;
-};
 
 std::vector<int> sample_updates(const GreedyOptions& o) {
   std::vector<int> out;
@@ -166,7 +52,11 @@ void validate(const GreedyOptions& o) {
 
 GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
   validate(o);
-  Session s(model, o);
+  GreedySession s(model, o.slots);
+  const tess::Box box = tess::model_box(model);
+  const auto camera = [&](int update) {  // path frame `update` (the batch run's view id)
+    return tess::camera_on(o.path, box, update, o.updates, o.width, o.height);
+  };
   GreedyStats stats;
   std::optional<HeadlessGL> gl;
   if (!o.null_renderer) gl.emplace(o.width, o.height);
@@ -197,12 +87,12 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
     std::thread pusher_thread([&] {
       try {
         if (gl) gl->make_current();
-        Pusher pusher(s, gl ? &*gl : nullptr);
+        GreedyPusher pusher(s, gl.has_value());
         for (int u = 0; u < o.updates; ++u) {
           pace(o, start, u);
           current_view.store(u, std::memory_order::relaxed);
           Image image;
-          UpdateRecord rec = pusher.update(u, wants_image(u), &image);
+          UpdateRecord rec = pusher.update(u, camera(u), u, wants_image(u) ? &image : nullptr);
           rec.at_seconds = seconds_since(start);
           stats.per_update.push_back(rec);
           if (!image.rgb.empty()) keep_image(u, std::move(image));
@@ -226,9 +116,9 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
         }
         last_view = view;
         stats.driver_waits += s.prepare(view);
-        const tess::Camera cam = s.camera(view);
+        const tess::Camera cam = camera(view);
         const tess::Frustum frustum = tess::Frustum::of(cam);
-        scheduler.run_frame([&](ItemId id, WorkerId w) { s.tessellate(id, cam, frustum, scratch[w]); });
+        scheduler.run_frame([&](ItemId id, WorkerId w) { s.tessellate(id, cam, frustum, o.settings, scratch[w]); });
         ++stats.tessellation_frames;
         frames_done.store(stats.tessellation_frames, std::memory_order::relaxed);
         stats.surfaces_tessellated += model.surfaces.size();
@@ -239,10 +129,10 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
   } else {
     stats.mode = "single-threaded: §5.3 budget 1/R - m*t_p per update";
     if (gl) gl->make_current();
-    Pusher pusher(s, gl ? &*gl : nullptr);
+    GreedyPusher pusher(s, gl.has_value());
     tess::TessellationScratch scratch;
     ItemId next = static_cast<ItemId>(model.surfaces.size());  // next surface of the current frame
-    tess::Camera cam = s.camera(0);
+    tess::Camera cam = camera(0);
     tess::Frustum frustum = tess::Frustum::of(cam);
     double seconds_per_triangle = 0;
     int frame_view = -1;  // the path frame the current tessellation frame is for
@@ -250,7 +140,7 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
     for (int u = 0; u < o.updates; ++u) {
       pace(o, start, u);
       Image image;
-      UpdateRecord rec = pusher.update(u, wants_image(u), &image);
+      UpdateRecord rec = pusher.update(u, camera(u), u, wants_image(u) ? &image : nullptr);
       rec.at_seconds = seconds_since(start);
       if (rec.triangles > 0) seconds_per_triangle = 1e-3 * rec.draw_ms / static_cast<double>(rec.triangles);
       const double budget = std::max(0.0, period - static_cast<double>(rec.triangles) * seconds_per_triangle);
@@ -262,11 +152,11 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
           frame_view = u;
           if (stats.surfaces_tessellated > 0) ++stats.tessellation_frames;  // the frame just finished
           stats.driver_waits += s.prepare(u);
-          cam = s.camera(u);
+          cam = camera(u);
           frustum = tess::Frustum::of(cam);
           next = 0;
         }
-        s.tessellate(next++, cam, frustum, scratch);
+        s.tessellate(next++, cam, frustum, o.settings, scratch);
         ++stats.surfaces_tessellated;
       } while (Clock::now() < deadline);
       stats.per_update.push_back(rec);
@@ -278,7 +168,7 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
   }
   stats.seconds = seconds_since(start);
   stats.updates = o.updates;
-  stats.tessellation_inconsistencies = s.inconsistencies.load(std::memory_order::relaxed);
+  stats.tessellation_inconsistencies = s.inconsistencies();
 
   // Statistics.
   double lag = 0, triangles = 0;
@@ -300,7 +190,7 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
     gl->make_current();
     double worst = -1;
     for (auto& [u, image] : lagging) {
-      const Image reference = render_synchronized(model, s.camera(u), o.settings);
+      const Image reference = render_synchronized(model, camera(u), o.settings);
       QualitySample q;
       q.update = u;
       q.mean_lag = stats.per_update[static_cast<std::size_t>(u)].mean_lag;

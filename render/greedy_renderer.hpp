@@ -14,6 +14,9 @@
 // "lag", in frames). Cracks: components swap independently, so while the view moves a crack can open between
 // two components tessellated for different views; inside a component, never (the paper's choice, §5.2).
 //
+// The pusher's update and the tessellators' per-surface step are render/greedy_pipeline.hpp, shared with the
+// interactive viewer (render/live_greedy.hpp, frontsteal-view); this file drives them along a camera path.
+//
 // Single-threaded mode (§5.3): one thread alternates a draw and a slice of tessellation. With display rate R,
 // m triangles drawn and t_p the measured time per drawn triangle, tessellation gets at most 1/R − m·t_p per
 // update (and at least one surface, so that it cannot starve).

@@ -35,6 +35,22 @@ void write_png(const Image& image, const std::string& path) {
   png_destroy_write_struct(&png, &info);
 }
 
+Image read_png(const std::string& path) {
+  // libpng's simplified API: any PNG (palette, grey, 16-bit, alpha) converted to 8-bit RGB.
+  png_image info{};
+  info.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&info, path.c_str())) {
+    throw std::runtime_error("cannot read PNG " + path + ": " + info.message);
+  }
+  info.format = PNG_FORMAT_RGB;
+  Image image(static_cast<int>(info.width), static_cast<int>(info.height));
+  if (!png_image_finish_read(&info, nullptr, image.rgb.data(), 0, nullptr)) {
+    png_image_free(&info);
+    throw std::runtime_error("cannot decode PNG " + path + ": " + info.message);
+  }
+  return image;
+}
+
 namespace {
 void require_same_size(const Image& a, const Image& b) {
   if (a.width != b.width || a.height != b.height) throw std::invalid_argument("images of different sizes");
@@ -94,6 +110,21 @@ std::size_t covered_pixels(const Image& image, const std::uint8_t background[3],
     n += differs;
   }
   return n;
+}
+
+double coverage_iou(const Image& a, const Image& b, const std::uint8_t background[3], int tolerance) {
+  require_same_size(a, b);
+  std::size_t both = 0, either = 0;
+  for (std::size_t i = 0; i + 2 < a.rgb.size(); i += 3) {
+    bool in_a = false, in_b = false;
+    for (int c = 0; c < 3; ++c) {
+      in_a = in_a || std::abs(a.rgb[i + c] - background[c]) > tolerance;
+      in_b = in_b || std::abs(b.rgb[i + c] - background[c]) > tolerance;
+    }
+    both += in_a && in_b;
+    either += in_a || in_b;
+  }
+  return either == 0 ? 1.0 : static_cast<double>(both) / static_cast<double>(either);
 }
 
 }  // namespace frontsteal::render

@@ -1,4 +1,4 @@
-// image.hpp — an RGB8 image, PNG output (libpng), and the image-quality measures used to compare a lagging
+// image.hpp — an RGB8 image, PNG output and input (libpng), and the image-quality measures used to compare a lagging
 // frame with the synchronized one: PSNR and SSIM.
 //
 // PSNR = 10 log10(255² / MSE) over all channels (infinite for identical images). SSIM (Wang, Bovik, Sheikh &
@@ -23,10 +23,18 @@ struct Image {
 // Writes `image` as an 8-bit RGB PNG; throws std::runtime_error naming the path on failure.
 void write_png(const Image& image, const std::string& path);
 
+// Reads any PNG as 8-bit RGB; throws std::runtime_error naming the path on failure.
+Image read_png(const std::string& path);
+
 double psnr(const Image& a, const Image& b);  // dB; +infinity when identical
 double ssim(const Image& a, const Image& b);
 
 // Pixels that differ from `background` (any channel by more than `tolerance`).
 std::size_t covered_pixels(const Image& image, const std::uint8_t background[3], int tolerance = 2);
+
+// Intersection over union of the two images' covered pixels (as covered_pixels counts them): 1 when both cover
+// the same pixels (or none), 0 when they share none. The render tests' shape check: shading may differ, the
+// silhouette may not. Images of the same size; else std::invalid_argument.
+double coverage_iou(const Image& a, const Image& b, const std::uint8_t background[3], int tolerance = 2);
 
 }  // namespace frontsteal::render

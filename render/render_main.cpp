@@ -19,8 +19,7 @@
 #include "reporting/table.hpp"
 #include "render/greedy_renderer.hpp"
 #include "render/headless_gl.hpp"
-#include "tessellate/components.hpp"
-#include "tessellate/scene_generator.hpp"
+#include "render/render_scene.hpp"
 
 namespace ts = frontsteal::tess;
 namespace rd = frontsteal::render;
@@ -168,21 +167,9 @@ void write_results(const Options& o, const ts::Model& model, const rd::GreedySta
 
 int main(int argc, char** argv) {
   Options o = parse(argc, argv);
-  ts::Model model;
-  try {
-    model = ts::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
-  } catch (const std::exception& e) {
-    std::cerr << kProgram << ": cannot load scene '" << o.scene << "': " << e.what() << '\n';
-    return 2;
-  }
-  if (model.surfaces.empty()) {
-    std::cerr << kProgram << ": scene '" << o.scene << "' has no surfaces\n";
-    return 2;
-  }
-  if (std::any_of(model.surfaces.begin(), model.surfaces.end(), [](const ts::Surface& s) { return s.component < 0; })) {
-    const ts::Box box = ts::model_box(model);
-    ts::assign_components(model, 1e-6 * std::max(1.0, glm::length(box.hi - box.lo)));
-  }
+  const std::optional<ts::Model> loaded = rd::load_render_scene_or_report(kProgram, o.scene, FRONTSTEAL_DATA_DIR);
+  if (!loaded) return 2;
+  const ts::Model& model = *loaded;
   std::optional<report::ResultsDir> dir;
   try {
     dir.emplace(kProgram, o.out);

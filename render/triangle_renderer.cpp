@@ -131,6 +131,8 @@ void TriangleRenderer::upload(std::uint32_t c, std::span<const tess::TriangleBuf
 
 void TriangleRenderer::begin_frame(const glm::dmat4& view_projection, const glm::dvec3& eye) {
   glClearColor(kBackground[0] / 255.0f, kBackground[1] / 255.0f, kBackground[2] / 255.0f, 1.0f);
+  // Depth test on every frame, not only at construction: in a window the overlay (Dear ImGui) shares the context.
+  glEnable(GL_DEPTH_TEST);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glUseProgram(program_);
   const glm::mat4 vp(view_projection);
@@ -150,7 +152,9 @@ std::uint64_t TriangleRenderer::draw(std::uint32_t c) {
 
 void TriangleRenderer::finish() const { glFinish(); }
 
-Image TriangleRenderer::read_pixels(int width, int height) const {
+Image TriangleRenderer::read_pixels(int width, int height) const { return read_framebuffer(width, height); }
+
+Image read_framebuffer(int width, int height) {
   Image image(width, height);
   std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * height * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);

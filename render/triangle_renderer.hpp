@@ -2,7 +2,9 @@
 // buffer per component, replaced whole when the component's published triangles change), Lambert shading with
 // a head light, one colour per component, and reads the image back.
 //
-// Needs a current context (HeadlessGL::make_current) on the calling thread for every call, the destructor too.
+// Needs a current OpenGL 3.3 core context on the calling thread for every call, the destructor too: HeadlessGL's
+// (EGL, its framebuffer object bound by make_current) or a window's (frontsteal-view: GLFW, the default
+// framebuffer). It draws into whatever framebuffer and viewport are bound; read_pixels reads the bound one.
 #pragma once
 
 #include <cstdint>
@@ -46,5 +48,9 @@ class TriangleRenderer {
   std::vector<float> vertex_scratch_;
   std::vector<std::uint32_t> index_scratch_;
 };
+
+// The bound framebuffer's lower-left width × height pixels (rows top to bottom): what a window shows, overlay
+// included, when called before the buffer swap. Needs a current context.
+Image read_framebuffer(int width, int height);
 
 }  // namespace frontsteal::render
