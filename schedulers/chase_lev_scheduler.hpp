@@ -18,31 +18,24 @@
 #include "core/std_backend.hpp"
 #include "schedulers/chase_lev_deque.hpp"
 #include "schedulers/scheduler.hpp"
-#include "schedulers/worker_team.hpp"
+#include "schedulers/team_scheduler.hpp"
 
 namespace frontsteal::sched {
 
-class ChaseLevScheduler final : public Scheduler {
+class ChaseLevScheduler final : public TeamScheduler<ChaseLevScheduler> {
  public:
   explicit ChaseLevScheduler(const SchedulerConfig& config)
-      : items_(config.items),
+      : TeamScheduler(config.workers),
+        items_(config.items),
         grain_(config.grain ? config.grain : 1),
         timed_(config.time_claims),
         seed_(config.seed),
-        slots_(config.workers),
-        deques_(config.workers),
-        team_(config.workers, [this](WorkerId w) { work(w); }) {}
-
-  const FrameStats& run_frame(ItemFunctionRef process) override {
-    process_ = &process;
-    remaining_.store(items_, std::memory_order::relaxed);  // published by the team's release (T1)
-    for (auto& s : slots_) s.stats = {};
-    const std::int64_t wall_ns = team_.run_frame();
-    return collect(stats_, slots_, wall_ns, &team_.spans());
-  }
-  WorkerId worker_count() const noexcept override { return team_.size(); }
+        deques_(config.workers) {}
 
  private:
+  friend class TeamScheduler<ChaseLevScheduler>;
+  void begin_frame() { remaining_.store(items_, std::memory_order::relaxed); }  // published by the team's release (T1)
+
   using Range = std::uint64_t;  // first << 32 | last
   static Range pack(ItemId first, ItemId last) { return std::uint64_t{first} << 32 | last; }
   static ItemId first_of(Range r) { return static_cast<ItemId>(r >> 32); }
@@ -53,7 +46,7 @@ class ChaseLevScheduler final : public Scheduler {
   };
 
   void process_range(WorkerId w, Range r) {
-    WorkerSlot& me = slots_[w];
+    WorkerSlot& me = slot(w);
     ChaseLevDeque<Range>& mine = deques_[w].deque;
     ItemId first = first_of(r), last = last_of(r);
     for (;;) {
@@ -62,7 +55,7 @@ class ChaseLevScheduler final : public Scheduler {
         mine.push(pack(mid, last));  // cannot fail: occupancy ≤ split depth ≤ 33 < 128
         last = mid;
       }
-      me.run_range(*process_, first, last, w, timed_);
+      me.run_range(process(), first, last, w, timed_);
       remaining_.fetch_sub(last - first, std::memory_order::release);
       Range next;
       if (!mine.take(next)) return;
@@ -72,12 +65,12 @@ class ChaseLevScheduler final : public Scheduler {
   }
 
   void work(WorkerId w) {
-    const WorkerId p = team_size();
+    const WorkerId p = worker_count();
     const ItemId first = static_cast<ItemId>(std::uint64_t{items_} * w / p);
     const ItemId last = static_cast<ItemId>(std::uint64_t{items_} * (w + 1) / p);
     if (first < last) process_range(w, pack(first, last));
-    WorkerSlot& me = slots_[w];
-    std::minstd_rand rng(static_cast<std::uint32_t>(seed_ * 7919 + w * 104729 + slots_[w].stats.items_processed));
+    WorkerSlot& me = slot(w);
+    std::minstd_rand rng(static_cast<std::uint32_t>(seed_ * 7919 + w * 104729 + me.stats.items_processed));
     for (std::uint32_t spins = 0; remaining_.load(std::memory_order::acquire) != 0; ++spins) {
       // The same back-off as the stealing protocol's idle loop: pause, then yield the core (oversubscription).
       StdBackend::spin_pause(Site::kActivePoll, spins);
@@ -98,18 +91,13 @@ class ChaseLevScheduler final : public Scheduler {
       }
     }
   }
-  WorkerId team_size() const noexcept { return static_cast<WorkerId>(slots_.size()); }
 
   ItemId items_;
   ItemId grain_;
   bool timed_;
   std::uint64_t seed_;
   alignas(64) std::atomic<std::uint64_t> remaining_{0};
-  std::vector<WorkerSlot> slots_;
   std::vector<PaddedDeque> deques_;
-  const ItemFunctionRef* process_ = nullptr;
-  FrameStats stats_;
-  WorkerTeam team_;
 };
 
 }  // namespace frontsteal::sched

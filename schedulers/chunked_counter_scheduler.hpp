@@ -10,37 +10,30 @@
 #include <atomic>
 
 #include "schedulers/scheduler.hpp"
-#include "schedulers/worker_team.hpp"
+#include "schedulers/team_scheduler.hpp"
 
 namespace frontsteal::sched {
 
-class ChunkedCounterScheduler final : public Scheduler {
+class ChunkedCounterScheduler final : public TeamScheduler<ChunkedCounterScheduler> {
  public:
   explicit ChunkedCounterScheduler(const SchedulerConfig& config)
-      : items_(config.items),
+      : TeamScheduler(config.workers),
+        items_(config.items),
         grain_(config.grain ? config.grain : default_grain(config.items, config.workers)),
-        timed_(config.time_claims),
-        slots_(config.workers),
-        team_(config.workers, [this](WorkerId w) { work(w); }) {}
+        timed_(config.time_claims) {}
 
-  const FrameStats& run_frame(ItemFunctionRef process) override {
-    process_ = &process;
-    next_.store(0, std::memory_order::relaxed);  // published by the team's release (T1)
-    for (auto& s : slots_) s.stats = {};
-    const std::int64_t wall_ns = team_.run_frame();
-    return collect(stats_, slots_, wall_ns, &team_.spans());
-  }
-  WorkerId worker_count() const noexcept override { return team_.size(); }
   ItemId grain() const noexcept { return grain_; }
 
  private:
+  friend class TeamScheduler<ChunkedCounterScheduler>;
+  void begin_frame() { next_.store(0, std::memory_order::relaxed); }  // published by the team's release (T1)
   void work(WorkerId w) {
-    WorkerSlot& me = slots_[w];
+    WorkerSlot& me = slot(w);
     for (;;) {
       const std::uint64_t first = next_.fetch_add(grain_, std::memory_order::relaxed);
       if (first >= items_) return;
       const ItemId last = static_cast<ItemId>(std::min<std::uint64_t>(first + grain_, items_));
-      me.run_range(*process_, static_cast<ItemId>(first), last, w, timed_);
+      me.run_range(process(), static_cast<ItemId>(first), last, w, timed_);
     }
   }
 
@@ -48,10 +41,6 @@ class ChunkedCounterScheduler final : public Scheduler {
   ItemId grain_;
   bool timed_;
   alignas(64) std::atomic<std::uint64_t> next_{0};  // 64-bit: P × grain past N cannot wrap
-  std::vector<WorkerSlot> slots_;
-  const ItemFunctionRef* process_ = nullptr;
-  FrameStats stats_;
-  WorkerTeam team_;
 };
 
 }  // namespace frontsteal::sched

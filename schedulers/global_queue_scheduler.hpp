@@ -8,32 +8,25 @@
 #include <mutex>
 
 #include "schedulers/scheduler.hpp"
-#include "schedulers/worker_team.hpp"
+#include "schedulers/team_scheduler.hpp"
 
 namespace frontsteal::sched {
 
-class GlobalQueueScheduler final : public Scheduler {
+class GlobalQueueScheduler final : public TeamScheduler<GlobalQueueScheduler> {
  public:
   explicit GlobalQueueScheduler(const SchedulerConfig& config)
-      : items_(config.items),
+      : TeamScheduler(config.workers),
+        items_(config.items),
         grain_(config.grain ? config.grain : default_grain(config.items, config.workers)),
-        timed_(config.time_claims),
-        slots_(config.workers),
-        team_(config.workers, [this](WorkerId w) { work(w); }) {}
+        timed_(config.time_claims) {}
 
-  const FrameStats& run_frame(ItemFunctionRef process) override {
-    process_ = &process;
-    next_ = 0;  // published to the workers by the team's release (T1)
-    for (auto& s : slots_) s.stats = {};
-    const std::int64_t wall_ns = team_.run_frame();
-    return collect(stats_, slots_, wall_ns, &team_.spans());
-  }
-  WorkerId worker_count() const noexcept override { return team_.size(); }
   ItemId grain() const noexcept { return grain_; }
 
  private:
+  friend class TeamScheduler<GlobalQueueScheduler>;
+  void begin_frame() { next_ = 0; }  // published to the workers by the team's release (T1)
   void work(WorkerId w) {
-    WorkerSlot& me = slots_[w];
+    WorkerSlot& me = slot(w);
     for (;;) {
       if (!mutex_.try_lock()) {
         ++me.stats.lock_waits;
@@ -46,7 +39,7 @@ class GlobalQueueScheduler final : public Scheduler {
       next_ = last;
       mutex_.unlock();
       if (first >= last) return;
-      me.run_range(*process_, first, last, w, timed_);
+      me.run_range(process(), first, last, w, timed_);
     }
   }
 
@@ -55,10 +48,6 @@ class GlobalQueueScheduler final : public Scheduler {
   bool timed_;
   std::mutex mutex_;
   ItemId next_ = 0;  // guarded by mutex_
-  std::vector<WorkerSlot> slots_;
-  const ItemFunctionRef* process_ = nullptr;
-  FrameStats stats_;
-  WorkerTeam team_;
 };
 
 }  // namespace frontsteal::sched

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "schedulers/scheduler.hpp"
-#include "schedulers/worker_team.hpp"
+#include "schedulers/team_scheduler.hpp"
 
 namespace frontsteal::sched {
 
@@ -33,35 +33,25 @@ inline void require_partition(const Assignment& a, WorkerId workers, ItemId item
   }
 }
 
-class StaticScheduler final : public Scheduler {
+class StaticScheduler final : public TeamScheduler<StaticScheduler> {
  public:
+  // The partition is checked before the base starts the team: a bad assignment starts no thread.
   StaticScheduler(const SchedulerConfig& config, Assignment assignment)
-      : assignment_((require_partition(assignment, config.workers, config.items), std::move(assignment))),
-        slots_(config.workers),
-        team_(config.workers, [this](WorkerId w) { work(w); }) {}
+      : TeamScheduler((require_partition(assignment, config.workers, config.items), config.workers)),
+        assignment_(std::move(assignment)) {}
 
-  const FrameStats& run_frame(ItemFunctionRef process) override {
-    process_ = &process;
-    for (auto& s : slots_) s.stats = {};
-    const std::int64_t wall_ns = team_.run_frame();
-    return collect(stats_, slots_, wall_ns, &team_.spans());
-  }
-  WorkerId worker_count() const noexcept override { return team_.size(); }
   const Assignment& assignment() const noexcept { return assignment_; }
 
  private:
+  friend class TeamScheduler<StaticScheduler>;
   void work(WorkerId w) {
-    WorkerSlot& me = slots_[w];
+    WorkerSlot& me = slot(w);
     const Clock::time_point start = Clock::now();  // one pair of clock reads per frame: always on
-    for (ItemId id : assignment_[w]) me.run(*process_, id, w);
+    for (ItemId id : assignment_[w]) me.run(process(), id, w);
     me.stats.busy_ns = nanoseconds_since(start);
   }
 
   Assignment assignment_;
-  std::vector<WorkerSlot> slots_;
-  const ItemFunctionRef* process_ = nullptr;
-  FrameStats stats_;
-  WorkerTeam team_;  // last: its threads start after everything they use exists
 };
 
 }  // namespace frontsteal::sched

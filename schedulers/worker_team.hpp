@@ -1,5 +1,6 @@
 // worker_team.hpp — P persistent threads that run one frame at a time: the skeleton of every scheduler in
-// schedulers/ that owns its threads (static, global queue, chunked counter, Chase–Lev).
+// schedulers/ that owns its threads (static, global queue, chunked counter, Chase–Lev). Those schedulers
+// share run_frame and their per-worker slots through team_scheduler.hpp.
 //
 // ROLES
 //   caller    run_frame(): publishes frame k (T1), sleeps until all P workers have arrived (T4), collects.
