@@ -213,12 +213,10 @@ std::string LlvmOpenMpChild::read_line() {
     if (r <= 0) continue;
     char chunk[65536];
     const ssize_t n = ::read(fd_, chunk, sizeof chunk);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw std::runtime_error(std::string("read: ") + std::strerror(errno));
-    }
-    if (n == 0) {
-      // End of output: the child exited. Say how.
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && errno != ECONNRESET) throw std::runtime_error(std::string("read: ") + std::strerror(errno));
+    if (n <= 0) {
+      // End of output, or the socket reset by a child that died with our "path" unread: it exited. Say how.
       int status = 0;
       std::string how = "the child closed its output";
       if (::waitpid(pid_, &status, 0) == pid_) {
