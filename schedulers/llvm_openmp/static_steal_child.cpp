@@ -36,7 +36,8 @@
 //                       frame <f> <wall_ns> <triangles> <inconsistent> <P> {<items> <busy_ns> <active_ns>
 //                       <cpu_ns> <chunks_stolen> <items_stolen>} x P <runs>
 //                     with <runs> the per-item execution counts of the frame, run-length encoded as
-//                     "count*length,count*length,..." (all ones: "1*N"); then "end".
+//                     "count*length,count*length,..." (all ones: "1*N"); then, once libomp's threads
+//                     have stopped spinning (KMP_BLOCKTIME + 20 ms), "end".
 //   "quit" or EOF     exit 0. The child also dies with its parent (PR_SET_PDEATHSIG, set by the parent).
 // The parent audits: exactly once from <runs>, triangles against its own serial loop.
 // --fault drop:K | dup:K  (negative controls) skip item K in every frame, or run it twice: the parent must
@@ -381,6 +382,11 @@ int main(int argc, char** argv) {
       if (n == 0) out += "-";
       std::cout << out << '\n';
     }
+    // libomp's idle threads spin for KMP_BLOCKTIME (200 ms by default, left as users get it: it is part of
+    // libomp's frame-to-frame wake-up) before they sleep. Wait that out here, so their spinning falls in
+    // this child's idle time and not on the next scheduler the main job measures (the main job's 5 ms
+    // settling pause covers libgomp's much shorter spin, not this).
+    std::this_thread::sleep_for(std::chrono::milliseconds(kmp_get_blocktime() + 20));
     std::cout << "end" << std::endl;
   }
   return 0;
