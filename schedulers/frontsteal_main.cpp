@@ -118,6 +118,10 @@ Columns cpu and off-cpu: the workers' thread CPU time, and their time in the fra
 (descheduled, or asleep on a lock), both over wall x P like utilization; idle for lack of work shows as
 utilization below cpu.
 
+openmp-static-steal (LLVM libomp's static_steal) runs in a child process, frontsteal-llvm-openmp, built with
+clang++-14 beside this program (FRONTSTEAL_LLVM_OPENMP=PATH overrides where it is); where it is missing its
+rows read "not available" with the reason, and the run goes on.
+
 Outputs in DIR: frontsteal.json (everything, per frame), frontsteal.csv and frontsteal.md (the table),
 frontsteal-speedup.png (speed-up against P), frontsteal-frames.png (frame time along the path).
 All figures are measured on this machine; none are simulated.

@@ -74,6 +74,22 @@ bool gone(pid_t pid) {
 
 }  // namespace
 
+TEST_CASE("the parent decodes the child's per-item counts and rejects malformed ones", "[llvm-openmp]") {
+  std::vector<std::uint32_t> runs;
+  REQUIRE(sc::decode_runs("1*3,0*1,2*1", 5, runs));
+  REQUIRE(runs == std::vector<std::uint32_t>{1, 1, 1, 0, 2});
+  const fs::ExecutionAudit a = sc::audit_runs(runs);
+  REQUIRE(a.lost == 1);
+  REQUIRE(a.duplicated == 1);
+  REQUIRE(a.first_lost == std::vector<fs::ItemId>{3});
+  REQUIRE(a.first_duplicated == std::vector<fs::ItemId>{4});
+  REQUIRE(sc::decode_runs("-", 0, runs));
+  for (const char* bad : {"1*4", "1*6", "1*5,", "1*0,1*5", "x*5", "1x5", "", "-"}) {
+    CAPTURE(bad);
+    REQUIRE_FALSE(sc::decode_runs(bad, 5, runs));
+  }
+}
+
 TEST_CASE("the static_steal child runs every surface exactly once with the serial loop's triangles", "[llvm-openmp]") {
   const std::string reason = sc::llvm_openmp_unavailable_reason();
   if (!reason.empty()) {
