@@ -54,6 +54,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -201,7 +202,7 @@ int probe_static_steal(int threads) {
     {
       const int t = omp_get_thread_num();
 #pragma omp for schedule(runtime) nowait
-      for (long long i = 0; i < m; ++i) {
+      for (int i = 0; i < static_cast<int>(m); ++i) {  // 32-bit, as the frames' loop
         if (owner_of(i, m, threads) != t) stolen = true;
         if (first[static_cast<std::size_t>(t)] >= 0) continue;
         first[static_cast<std::size_t>(t)] = i;
@@ -293,6 +294,11 @@ int main(int argc, char** argv) {
   const long long grain = o.grain;
   const long long chunks = (n + grain - 1) / grain;
   const bool static_ranges = P > 1 && chunks >= P;  // libomp's own condition for static_steal's ranges
+  if (chunks > std::numeric_limits<int>::max()) {
+    std::cout << "error " << chunks << " chunks: more than a 32-bit loop counts (use --grain)" << std::endl;
+    return 1;
+  }
+  const int chunks32 = static_cast<int>(chunks);
   struct alignas(64) Worker {
     std::int64_t items = 0, busy_ns = 0, active_ns = 0, cpu_ns = 0, chunks_stolen = 0, items_stolen = 0;
   };
@@ -318,8 +324,11 @@ int main(int argc, char** argv) {
       if (o.pin) pinning.pin_this_thread(static_cast<unsigned>(t));
       const Clock::time_point span = Clock::now();
       const std::int64_t cpu = frontsteal::thread_cpu_ns();
+      // A 32-bit induction variable: libomp's lock-free static_steal (one 64-bit CAS on a thread's (count,
+      // limit) pair); 64-bit ones take a per-thread lock for every chunk (kmp_dispatch.cpp, type_size > 4).
 #pragma omp for schedule(runtime) nowait
-      for (long long c = 0; c < chunks; ++c) {
+      for (int ci = 0; ci < chunks32; ++ci) {
+        const long long c = ci;
         const Clock::time_point claim = Clock::now();
         for (long long id = c * grain; id < std::min((c + 1) * grain, n); ++id) {
           if (id == o.fault_item && o.fault == Options::Fault::drop) continue;
