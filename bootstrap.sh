@@ -32,6 +32,11 @@ packages=(
   # the main job's plots (schedulers/frontsteal_main.cpp writes a gnuplot script and runs it); oneTBB is
   # listed above (libtbb-dev), OpenMP comes with g++ (libgomp)
   gnuplot-nox
+  # the lock-free global queue peer, moodycamel-queue (schedulers/concurrent_queue_scheduler.hpp): header-only
+  libconcurrentqueue-dev
+  # openmp-static-steal: LLVM's OpenMP runtime (static_steal), in its own executable built with clang++-14
+  # (listed above) so that libomp and libgomp never share a process (schedulers/llvm_openmp/)
+  libomp-14-dev
   # greedy rendering (render/): headless OpenGL through EGL (Mesa's llvmpipe without a GPU), PNG output
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
   # the interactive viewer frontsteal-view (render/view_main.cpp): GLFW windows, Dear ImGui (Debian's libimgui.a

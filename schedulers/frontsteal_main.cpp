@@ -32,6 +32,7 @@
 #include "core/machine_info.hpp"
 #include "core/paired_comparison.hpp"
 #include "core/thread_pinning.hpp"
+#include "schedulers/llvm_openmp_child.hpp"
 #include "schedulers/noise_monitor.hpp"
 #include "schedulers/registry.hpp"
 #include "schedulers/static_assignment.hpp"
@@ -117,6 +118,10 @@ Columns cpu and off-cpu: the workers' thread CPU time, and their time in the fra
 (descheduled, or asleep on a lock), both over wall x P like utilization; idle for lack of work shows as
 utilization below cpu.
 
+openmp-static-steal (LLVM libomp's static_steal) runs in a child process, frontsteal-llvm-openmp, built with
+clang++-14 beside this program (FRONTSTEAL_LLVM_OPENMP=PATH overrides where it is); where it is missing its
+rows read "not available" with the reason, and the run goes on.
+
 Outputs in DIR: frontsteal.json (everything, per frame), frontsteal.csv and frontsteal.md (the table),
 frontsteal-speedup.png (speed-up against P), frontsteal-frames.png (frame time along the path).
 All figures are measured on this machine; none are simulated.
@@ -154,6 +159,9 @@ Options parse(int argc, char** argv) {
                   << (s.contract == fs::Contract::kAtLeastOnce ? "  [at-least-once: not run on tessellation]" : "")
                   << '\n';
       }
+      std::cout << std::left << std::setw(22) << sc::kLlvmOpenMpName << sc::kLlvmOpenMpSummary
+                << (sc::llvm_openmp_unavailable_reason().empty() ? "" : "  [not available: " + sc::llvm_openmp_unavailable_reason() + "]")
+                << '\n';
       std::exit(0);
     } else if (a == "--scene") {
       o.scene = args.value();
@@ -213,8 +221,13 @@ Options parse(int argc, char** argv) {
     for (const auto& s : sc::scheduler_registry()) {
       if (s.contract == fs::Contract::kExactlyOnce) wanted.push_back(s.name);
     }
+    wanted.emplace_back(sc::kLlvmOpenMpName);  // a child process (llvm_openmp_child.hpp); "not available" if not built
   } else {
     for (const auto& name : o.schedulers) {
+      if (name == sc::kLlvmOpenMpName) {
+        wanted.push_back(name);
+        continue;
+      }
       const sc::SchedulerInfo* s = sc::find_scheduler(name);
       if (!s) usage_error("unknown scheduler '" + name + "' (see --list)");
       if (s->contract != fs::Contract::kExactlyOnce) {
@@ -258,6 +271,8 @@ struct Cell {
   std::string scheduler;
   fs::WorkerId workers = 0;
   std::unique_ptr<sc::Scheduler> instance;
+  std::unique_ptr<sc::LlvmOpenMpChild> child;      // openmp-static-steal: the child process instead of instance
+  std::string unavailable;                         // why this cell could not run ("" when it ran)
   double setup_ms = 0;                             // construction (annealing included)
   std::vector<double> path_ms;                     // per repeat
   std::vector<std::vector<double>> frame_ms;       // [repeat][frame]
@@ -492,7 +507,55 @@ int main(int argc, char** argv) {
     pinning.unpin_this_thread();
     t_pinned_as = -1;
   };
+  // openmp-static-steal: the child runs the whole path (llvm_openmp_child.hpp); the same accounting and the
+  // same audits, from what it reports. Its CPU time is ours, not another process's, for the noise monitor.
+  auto run_child_path = [&](Cell& c) {
+    std::vector<double> per_frame;
+    double total = 0;
+    const nz::ProcSample before = nz::sample_now();
+    const std::uint64_t child_ticks = c.child->cpu_ticks();
+    const std::vector<sc::ChildFrame> frames = c.child->run_path();
+    nz::Usage usage = nz::usage_between(before, nz::sample_now());
+    usage.self_ticks += c.child->cpu_ticks() - child_ticks;
+    c.usage += usage;
+    for (int f = 0; f < o.frames; ++f) {
+      const sc::ChildFrame& cf = frames[static_cast<std::size_t>(f)];
+      const fs::FrameStats& st = cf.stats;
+      const double ms = static_cast<double>(st.wall_ns) / 1e6;
+      per_frame.push_back(ms);
+      total += ms;
+      c.totals += st.totals();
+      if (c.per_worker.size() < st.workers.size()) c.per_worker.resize(st.workers.size());
+      for (std::size_t w = 0; w < st.workers.size(); ++w) c.per_worker[w] += st.workers[w];
+      c.busy_over_available += static_cast<double>(st.totals().busy_ns);
+      c.available += static_cast<double>(st.wall_ns) * st.workers.size();
+      c.imbalance_sum += st.imbalance();
+      c.imbalance_max = std::max(c.imbalance_max, st.imbalance());
+      ++c.frames_run;
+      const std::string at = "frame " + std::to_string(f) + ": ";
+      if (!cf.audit.exactly_once()) {
+        ++c.audit_failures;
+        std::ostringstream m;
+        m << at << cf.audit;
+        if (c.first_problem.empty()) c.first_problem = m.str();
+      }
+      if (cf.inconsistent > 0) {
+        c.tessellation_inconsistencies += cf.inconsistent;
+        if (c.first_problem.empty()) c.first_problem = at + std::to_string(cf.inconsistent) + " surfaces fail the tessellation audit";
+      }
+      if (cf.triangles != wl.serial_triangles[static_cast<std::size_t>(f)]) {
+        ++c.triangle_mismatches;
+        if (c.first_problem.empty()) {
+          c.first_problem = at + std::to_string(cf.triangles) + " triangles, serial loop made " +
+                            std::to_string(wl.serial_triangles[static_cast<std::size_t>(f)]);
+        }
+      }
+    }
+    c.path_ms.push_back(total);
+    c.frame_ms.push_back(per_frame);
+  };
   auto run_cell_path = [&](Cell& c) {
+    if (c.child) return run_child_path(c);
     std::vector<double> per_frame;
     double total = 0;
     const nz::ProcSample before = nz::sample_now();
@@ -549,6 +612,33 @@ int main(int argc, char** argv) {
 
   // Construct every cell's scheduler (static partitions computed here, timed), with one untimed warm-up frame.
   for (Cell& c : cells) {
+    if (c.scheduler == sc::kLlvmOpenMpName) {  // a child process per P, started here and kept (it warms up itself)
+      c.unavailable = sc::llvm_openmp_unavailable_reason();
+      if (c.unavailable.empty()) {
+        sc::ChildWorkload cw;
+        cw.scene = o.scene;
+        cw.frames = o.frames;  // path: orbit-then-zoom, the child's default, as camera_on_path above
+        cw.tolerance = o.tolerance;
+        cw.width = o.width;
+        cw.height = o.height;
+        cw.grain = o.grain;
+        cw.plant_defect = o.planted_defect == ts::PlantedDefect::drop_ear               ? "drop-ear"
+                          : o.planted_defect == ts::PlantedDefect::bridge_to_first_copy ? "wave1-bridge"
+                                                                                        : "";
+        cw.pin = o.pin;
+        const auto t0 = std::chrono::steady_clock::now();
+        try {
+          c.child = std::make_unique<sc::LlvmOpenMpChild>(c.workers, n, cw);
+        } catch (const std::exception& e) {
+          c.unavailable = e.what();
+        }
+        c.setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      }
+      if (!c.unavailable.empty()) {
+        std::cerr << kProgram << ": " << c.scheduler << " P=" << c.workers << " not available: " << c.unavailable << '\n';
+      }
+      continue;
+    }
     const sc::SchedulerInfo* info = sc::find_scheduler(c.scheduler);
     sc::SchedulerConfig config{.workers = c.workers, .items = n, .grain = o.grain, .seed = o.seed};
     const auto t0 = std::chrono::steady_clock::now();
@@ -569,6 +659,12 @@ int main(int argc, char** argv) {
     c.instance->run_frame(warm);
     unpin_caller();
   }
+  // Cells that could not start (openmp-static-steal without its child) are reported, not measured.
+  std::vector<Cell> not_available;
+  for (Cell& c : cells) {
+    if (!c.unavailable.empty()) not_available.push_back(std::move(c));
+  }
+  std::erase_if(cells, [](const Cell& c) { return !c.unavailable.empty() || (!c.instance && !c.child); });
   const nz::ProcSample measure_start = nz::sample_now();
   const auto rounds_start = std::chrono::steady_clock::now();
 
@@ -763,6 +859,18 @@ int main(int argc, char** argv) {
           << (r.vs_queue ? r.vs_queue->verdict_text() : (c.scheduler == "queue-mutex" ? "reference" : "-")) << " | "
           << (c.failed() ? "FAILED" : "ok") << " |\n";
   }
+  for (const Cell& c : not_available) {
+    table << "| " << c.workers << " | " << c.scheduler << " | not available: " << c.unavailable
+          << " | - | - | - | - | - | - | - | - | - | - | - | - | - |\n";
+  }
+  std::ostringstream child_note;  // how openmp-static-steal ran, and the proof that static_steal was in effect
+  for (const Cell& c : cells) {
+    if (c.child) {
+      child_note << sc::kLlvmOpenMpName << " P=" << c.workers << ": child process " << sc::llvm_openmp_child_path()
+                 << " (clang++-14, libomp; per-item code compiled by clang), " << c.child->ready_line()
+                 << "; steals = chunks run off their static owner\n";
+    }
+  }
   std::cout << "\nfrontsteal: " << o.scene << ", " << n << " surfaces, " << o.frames << " frames x " << o.repeats
             << " repeats (medians), tolerance " << o.tolerance << " px, " << o.width << "x" << o.height << "\n"
             << "machine: " << machine << " (measured, not simulated)\n"
@@ -771,7 +879,7 @@ int main(int argc, char** argv) {
             << "in the frame without a CPU, over wall x P\n"
             << "repeats: " << o.repeats << " (" << repeats_note << "); T_P/T_ref = median of per-repeat ratios, "
             << "95 % bootstrap interval; verdict at 95 %, effect = change in path time\n\n"
-            << table.str() << '\n' << tessellation_audit.str() << '\n' << spread_line.str() << '\n'
+            << table.str() << '\n' << child_note.str() << tessellation_audit.str() << '\n' << spread_line.str() << '\n'
             << noise_line.str() << '\n';
 
   {
@@ -783,7 +891,7 @@ int main(int argc, char** argv) {
        << "Verdicts: median of the per-repeat ratios T_P[r] / T_ref[r] with its 95 % bootstrap interval; ahead / "
        << "behind when the interval lies below / above 1; effect = change in path time. cpu and off-cpu: the "
        << "workers' thread CPU time and their time in the frame without a CPU, over wall x P.\n\n"
-       << table.str() << '\n' << tessellation_audit.str() << ".\n\n" << spread_line.str() << ".\n\n"
+       << table.str() << '\n' << child_note.str() << (child_note.str().empty() ? "" : "\n") << tessellation_audit.str() << ".\n\n" << spread_line.str() << ".\n\n"
        << noise_line.str() << ".\n";
     if (unreliable > 0) md << "\n**" << warning.str().substr(0, warning.str().find('\n')) << "**\n\n```\n" << warning.str() << "```\n";
   }
@@ -878,7 +986,20 @@ int main(int argc, char** argv) {
       }
       js << "]}" << (i + 1 < rows.size() ? "," : "") << "\n";
     }
-    js << "  ]\n}\n";
+    js << "  ],\n  \"not_available\": [";
+    for (std::size_t i = 0; i < not_available.size(); ++i) {
+      js << (i ? ", " : "") << "{\"scheduler\": \"" << not_available[i].scheduler << "\", \"workers\": "
+         << not_available[i].workers << ", \"reason\": \"" << json_escape(not_available[i].unavailable) << "\"}";
+    }
+    js << "],\n  \"child_processes\": [";
+    bool first_child = true;
+    for (const Cell& c : cells) {
+      if (!c.child) continue;
+      js << (first_child ? "" : ", ") << "{\"scheduler\": \"" << c.scheduler << "\", \"workers\": " << c.workers
+         << ", \"ready\": \"" << json_escape(c.child->ready_line()) << "\"}";
+      first_child = false;
+    }
+    js << "]\n}\n";
   }
 
   // Plots: speed-up against P (one line per scheduler, the ideal dashed), and frame time along the path at the

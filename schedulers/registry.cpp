@@ -4,6 +4,7 @@
 #include "core/membarrier.hpp"
 #include "schedulers/chase_lev_scheduler.hpp"
 #include "schedulers/chunked_counter_scheduler.hpp"
+#include "schedulers/concurrent_queue_scheduler.hpp"
 #include "schedulers/global_queue_scheduler.hpp"
 #include "schedulers/library_schedulers.hpp"
 #include "schedulers/static_assignment.hpp"
@@ -44,6 +45,11 @@ std::vector<SchedulerInfo> build() {
                  Contract::kExactlyOnce, true,
                  [](const SchedulerConfig& c, const WorkloadHints&) -> std::unique_ptr<Scheduler> {
                    return std::make_unique<GlobalQueueScheduler>(c);
+                 }});
+  all.push_back({"moodycamel-queue", "lock-free global queue (moodycamel::ConcurrentQueue), grain N/(100P)",
+                 Contract::kExactlyOnce, true,
+                 [](const SchedulerConfig& c, const WorkloadHints&) -> std::unique_ptr<Scheduler> {
+                   return std::make_unique<ConcurrentQueueScheduler>(c);
                  }});
   all.push_back({"counter-atomic", "chunked atomic counter, grain N/(100P)", Contract::kExactlyOnce, true,
                  [](const SchedulerConfig& c, const WorkloadHints&) -> std::unique_ptr<Scheduler> {
