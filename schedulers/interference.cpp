@@ -8,6 +8,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <fcntl.h>
+
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -34,7 +36,10 @@ bool before(const timespec& a, const timespec& b) {
 }
 
 // The child: system calls only (we are a fork of a multithreaded process; see the header).
-[[noreturn]] void co_runner_main(pid_t parent, long busy_ns, long period_ns, int cpu) {
+// `ready` is the write end of a pipe: one byte written once the death signal is armed, which start() waits
+// for (a SIGSTOP from pause() arriving before the prctl would otherwise leave a stopped orphan behind a
+// parent killed at that moment).
+[[noreturn]] void co_runner_main(pid_t parent, long busy_ns, long period_ns, int cpu, int ready) {
   prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (getppid() != parent) _exit(0);  // the parent died before the prctl took effect
   prctl(PR_SET_NAME, "fs-co-runner");
@@ -44,6 +49,10 @@ bool before(const timespec& a, const timespec& b) {
     CPU_SET(cpu, &one);
     sched_setaffinity(0, sizeof one, &one);
   }
+  const char byte = 1;
+  while (write(ready, &byte, 1) < 0 && errno == EINTR) {
+  }
+  close(ready);
   timespec period_start{};
   clock_gettime(CLOCK_MONOTONIC, &period_start);
   volatile std::uint64_t spin = 0;
@@ -71,11 +80,29 @@ CoRunner CoRunner::start(const CoRunnerOptions& o) {
   if (o.period_us < 100) throw std::invalid_argument("co-runner period must be at least 100 us");
   const long period_ns = 1000L * o.period_us;
   const long busy_ns = std::lround(o.duty * static_cast<double>(period_ns));
+  int ready[2];
+  if (pipe2(ready, O_CLOEXEC) != 0) throw std::system_error(errno, std::generic_category(), "pipe for the co-runner");
   const pid_t parent = getpid();
   const pid_t pid = fork();
-  if (pid < 0) throw std::system_error(errno, std::generic_category(), "fork of the co-runner");
-  if (pid == 0) co_runner_main(parent, busy_ns, period_ns, o.cpu);
-  return CoRunner(pid, o);
+  if (pid < 0) {
+    const int e = errno;
+    close(ready[0]);
+    close(ready[1]);
+    throw std::system_error(e, std::generic_category(), "fork of the co-runner");
+  }
+  if (pid == 0) {
+    close(ready[0]);
+    co_runner_main(parent, busy_ns, period_ns, o.cpu, ready[1]);
+  }
+  close(ready[1]);
+  CoRunner guard(pid, o);  // from here on, every way out kills and reaps it
+  char byte = 0;
+  ssize_t got = 0;
+  while ((got = read(ready[0], &byte, 1)) < 0 && errno == EINTR) {
+  }
+  close(ready[0]);
+  if (got != 1) throw std::runtime_error("the co-runner died before it started");
+  return guard;
 }
 
 CoRunner& CoRunner::operator=(CoRunner&& other) noexcept {

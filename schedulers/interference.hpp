@@ -14,6 +14,8 @@
 //     waits for the child, so no zombie and no stray busy loop remains;
 //   - the child sets PR_SET_PDEATHSIG = SIGKILL, so it dies when the thread that forked it dies (the parent
 //     killed, std::exit, a crash); it checks getppid() after the prctl for a parent that died before it.
+//     start() returns only once the child has armed it (a pipe byte), so a pause() (SIGSTOP) can never
+//     freeze the child before it is armed and leave it behind, stopped, when the parent is killed;
 //     Fork from a thread that outlives the co-runner (the main thread does).
 #pragma once
 
