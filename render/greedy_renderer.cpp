@@ -70,8 +70,11 @@ struct Session {
   // Tessellator: one surface into its component's back slot, then the component's count-down (and swap).
   void tessellate(ItemId id, const tess::Camera& camera, const tess::Frustum& frustum, tess::TessellationScratch& scratch) {
     const auto c = static_cast<ComponentId>(model.surfaces[id].component);
-    const tess::SurfaceResult r =
-        tess::tessellate_surface(prepared[id], camera, frustum, options.settings, scratch, buffers[publication->back_slot(c)][id]);
+    tess::TriangleBuffers& out = buffers[publication->back_slot(c)][id];
+    // The tessellation-bound mode (cost_multiplier K): the same surface K times into the same back slot (no
+    // one reads it before finish_surface); the last result is the published one.
+    for (int k = 1; k < options.cost_multiplier; ++k) tess::tessellate_surface(prepared[id], camera, frustum, options.settings, scratch, out);
+    const tess::SurfaceResult r = tess::tessellate_surface(prepared[id], camera, frustum, options.settings, scratch, out);
     if (r.inconsistencies() > 0) inconsistencies.fetch_add(1, std::memory_order::relaxed);
     publication->finish_surface(c);
   }
@@ -156,6 +159,7 @@ std::string png_path(const GreedyOptions& o, const std::string& stem, int u) {
 
 void validate(const GreedyOptions& o) {
   if (o.updates < 1) throw std::invalid_argument("updates must be at least 1");
+  if (o.cost_multiplier < 1) throw std::invalid_argument("cost_multiplier must be at least 1");
   if (o.slots < 2) throw std::invalid_argument("a component needs at least 2 slots");
   if (o.tessellators < 1) throw std::invalid_argument("at least one tessellator");
   if (o.display_rate < 0) throw std::invalid_argument("the display rate must not be negative");
