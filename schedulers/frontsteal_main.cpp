@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -785,9 +786,29 @@ int main(int argc, char** argv) {
   path_line << "camera path: " << ts::name(o.path);
   if (o.path == ts::CameraPathKind::dense_zoom) {
     const glm::dvec3 c = dense.box.centre();
-    path_line << " (ends at the densest region: " << dense.surfaces << " surfaces centred in one cell of a 96-cell "
-              << "grid, around (" << fixed(c.x, 1) << ", " << fixed(c.y, 1) << ", " << fixed(c.z, 1)
-              << "), box diagonal " << fixed(glm::length(dense.box.hi - dense.box.lo), 2) << ")";
+    path_line << " (ends at the densest region: " << dense.surfaces << " surfaces centred in one grid cell of edge "
+              << fixed(dense.cell_edge, 2) << " (the median control-box diagonal), around (" << fixed(c.x, 1) << ", "
+              << fixed(c.y, 1) << ", " << fixed(c.z, 1) << "), box diagonal "
+              << fixed(glm::length(dense.box.hi - dense.box.lo), 2) << ")";
+  }
+  {
+    // How much a few surfaces dominate: the 16 costliest surfaces' share of a frame's estimated cost.
+    double top_max = 0;
+    int top_frame = 0;
+    for (int f = 0; f < o.frames; ++f) {
+      std::vector<double> c = item_estimate[f];
+      const std::size_t k = std::min<std::size_t>(16, c.size());
+      std::partial_sort(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(k), c.end(), std::greater<>());
+      double top = 0, total = 0;
+      for (std::size_t i = 0; i < c.size(); ++i) (i < k ? top : total) += c[i];
+      total += top;
+      if (total > 0 && top / total > top_max) {
+        top_max = top / total;
+        top_frame = f;
+      }
+    }
+    path_line << "; the 16 costliest surfaces carry up to " << fixed(100 * top_max, 1)
+              << " % of a frame's estimated cost (frame " << top_frame << ")";
   }
   struct SpreadRow {
     fs::WorkerId p;
@@ -810,7 +831,7 @@ int main(int argc, char** argv) {
     }
     spreads.push_back(std::move(r));
   }
-  auto ratio_text = [](double v) { return std::isinf(v) ? std::string("inf") : fixed(v, 2); };
+  using sc::ratio_text;
   std::ostringstream spread_summary;
   spread_summary << "round-robin cost spread (max/min over workers of the per-frame cost, item i on worker i mod P; "
                     "worst frame / median over frames; paper §3: 1:50 for static schemes):";
@@ -974,23 +995,12 @@ int main(int argc, char** argv) {
     } else {
       js << "{\"on\": false}";
     }
-    auto spread_json = [&](const sc::CostSpread& c) {
-      std::ostringstream j;
-      j << "{\"worst\": " << (std::isinf(c.worst) ? std::string("null") : fixed(c.worst, 4)) << ", \"worst_frame\": "
-        << c.worst_frame << ", \"median\": " << (std::isinf(c.median) ? std::string("null") : fixed(c.median, 4))
-        << ", \"per_frame\": [";
-      for (std::size_t f = 0; f < c.per_frame.size(); ++f) {
-        j << (f ? ", " : "") << (std::isinf(c.per_frame[f]) ? std::string("null") : fixed(c.per_frame[f], 4));
-      }
-      j << "]}";
-      return j.str();
-    };
     js << ",\n  \"round_robin_spread\": [";
     for (std::size_t i = 0; i < spreads.size(); ++i) {
       const SpreadRow& r = spreads[i];
-      js << (i ? ",\n    " : "\n    ") << "{\"workers\": " << r.p << ", \"serial_item_times\": " << spread_json(r.measured)
-         << ", \"estimates\": " << spread_json(r.estimated) << ", \"round_robin_busy\": "
-         << (r.busy ? spread_json(*r.busy) : std::string("null")) << "}";
+      js << (i ? ",\n    " : "\n    ") << "{\"workers\": " << r.p << ", \"serial_item_times\": " << sc::to_json(r.measured)
+         << ", \"estimates\": " << sc::to_json(r.estimated) << ", \"round_robin_busy\": "
+         << (r.busy ? sc::to_json(*r.busy) : std::string("null")) << "}";
     }
     js << "]";
     js

@@ -7,7 +7,10 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace frontsteal::sched {
@@ -56,6 +59,28 @@ inline CostSpread round_robin_spread(const std::vector<std::vector<double>>& cos
     ratios.push_back(load_ratio(load));
   }
   return summarize_spread(std::move(ratios));
+}
+
+// A ratio for a report: two decimals, "inf" for a worker with nothing.
+inline std::string ratio_text(double v) {
+  if (std::isinf(v)) return "inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  return buf;
+}
+
+// {"worst": …, "worst_frame": …, "median": …, "per_frame": […]}; infinity is written as null.
+inline std::string to_json(const CostSpread& c) {
+  auto number = [](double v) {
+    if (std::isinf(v)) return std::string("null");
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4f", v);
+    return std::string(buf);
+  };
+  std::string j = "{\"worst\": " + number(c.worst) + ", \"worst_frame\": " + std::to_string(c.worst_frame) +
+                  ", \"median\": " + number(c.median) + ", \"per_frame\": [";
+  for (std::size_t f = 0; f < c.per_frame.size(); ++f) j += (f ? ", " : "") + number(c.per_frame[f]);
+  return j + "]}";
 }
 
 }  // namespace frontsteal::sched

@@ -81,23 +81,32 @@ inline std::optional<CameraPathKind> camera_path_named(std::string_view n) {
   return std::nullopt;
 }
 
-// The model's densest region: the cell of a grid over the model's box (cubic cells, `cells` along the longest
-// side) holding the most patch centres, ties broken by the larger summed control-box volume, then by the
-// lowest cell. Its box is the union of the control boxes of the surfaces centred in it. A zoom that ends
-// close to it puts a few surfaces large on screen, so that their view-dependent cost dominates the frame
-// (paper §3: the case static allocation cannot balance). 96 cells: on the plant a cell is about a flange or
-// an elbow (8 surfaces within 2 units for plant:1201), so the zoom ends on a few small, trimmed parts.
+// The model's densest region: the cell of a grid over the model's box holding the most patch centres, ties
+// broken by the larger summed control-box volume, then by the lowest cell. The cells are cubes of
+// `parts` × the median control-box diagonal of the surfaces, so a cell is about one part (a flange, an elbow)
+// whatever the model's overall size. Its box is the union of the control boxes of the surfaces centred in it.
+// A zoom that ends close to it puts a few surfaces large on screen, so that their view-dependent cost
+// dominates the frame (paper §3: the case static allocation cannot balance).
 struct DenseRegion {
   Box box;
   int surfaces = 0;
+  double cell_edge = 0;
 };
 
-inline DenseRegion densest_region(const Model& m, int cells = 96) {
+inline DenseRegion densest_region(const Model& m, double parts = 1.0) {
   DenseRegion best;
   if (m.surfaces.empty()) return best;
   const Box all = model_box(m);
   const glm::dvec3 extent = all.hi - all.lo;
-  const double edge = std::max({extent.x, extent.y, extent.z, 1e-300}) / std::max(1, cells);
+  std::vector<double> diagonals;
+  for (const Surface& s : m.surfaces) {
+    const Box b = control_box(s.patch);
+    diagonals.push_back(glm::length(b.hi - b.lo));
+  }
+  std::nth_element(diagonals.begin(), diagonals.begin() + static_cast<std::ptrdiff_t>(diagonals.size() / 2), diagonals.end());
+  double edge = parts * diagonals[diagonals.size() / 2];
+  if (!(edge > 0)) edge = std::max({extent.x, extent.y, extent.z, 1e-300}) / 96;
+  best.cell_edge = edge;
   struct Cell {
     int count = 0;
     double volume = 0;
