@@ -38,6 +38,8 @@ class ThreadPinning {
     return pthread_setaffinity_np(pthread_self(), sizeof allowed_, &allowed_) == 0;
   }
   std::size_t cpu_count() const noexcept { return cpus_.size(); }
+  // The CPU worker w is pinned to (-1 when none is known): where --interference pinned puts its co-runner.
+  int cpu_of(unsigned w) const noexcept { return cpus_.empty() ? -1 : cpus_[w % cpus_.size()]; }
 
  private:
   cpu_set_t allowed_;

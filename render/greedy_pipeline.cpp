@@ -33,10 +33,14 @@ std::uint64_t GreedySession::prepare(int view) {
 }
 
 void GreedySession::tessellate(ItemId id, const tess::Camera& camera, const tess::Frustum& frustum,
-                               const tess::TessellationSettings& settings, tess::TessellationScratch& scratch) {
+                               const tess::TessellationSettings& settings, tess::TessellationScratch& scratch,
+                               int cost_multiplier) {
   const auto c = static_cast<ComponentId>(model_.surfaces[id].component);
-  const tess::SurfaceResult r =
-      tess::tessellate_surface(prepared_[id], camera, frustum, settings, scratch, buffers_[publication_->back_slot(c)][id]);
+  tess::TriangleBuffers& out = buffers_[publication_->back_slot(c)][id];
+  // The tessellation-bound mode (frontsteal-paper table2 --cost-multiplier K): the same surface K times into the
+  // same back slot (no one reads it before finish_surface); the last result is the published one.
+  for (int k = 1; k < cost_multiplier; ++k) tess::tessellate_surface(prepared_[id], camera, frustum, settings, scratch, out);
+  const tess::SurfaceResult r = tess::tessellate_surface(prepared_[id], camera, frustum, settings, scratch, out);
   if (r.inconsistencies() > 0) inconsistencies_.fetch_add(1, std::memory_order::relaxed);
   publication_->finish_surface(c);
 }

@@ -53,7 +53,7 @@ class GreedySession {
   std::uint64_t prepare(int view);
   // Tessellator: one surface into its component's back slot, then the component's count-down (and swap).
   void tessellate(ItemId id, const tess::Camera& camera, const tess::Frustum& frustum,
-                  const tess::TessellationSettings& settings, tess::TessellationScratch& scratch);
+                  const tess::TessellationSettings& settings, tess::TessellationScratch& scratch, int cost_multiplier = 1);
   // Surface tessellations whose own audit failed (surface_tessellator.hpp, step 6).
   std::uint64_t inconsistencies() const noexcept { return inconsistencies_.load(std::memory_order::relaxed); }
 

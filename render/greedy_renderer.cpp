@@ -42,6 +42,7 @@ std::string png_path(const GreedyOptions& o, const std::string& stem, int u) {
 
 void validate(const GreedyOptions& o) {
   if (o.updates < 1) throw std::invalid_argument("updates must be at least 1");
+  if (o.cost_multiplier < 1) throw std::invalid_argument("cost_multiplier must be at least 1");
   if (o.slots < 2) throw std::invalid_argument("a component needs at least 2 slots");
   if (o.tessellators < 1) throw std::invalid_argument("at least one tessellator");
   if (o.display_rate < 0) throw std::invalid_argument("the display rate must not be negative");
@@ -118,7 +119,7 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
         stats.driver_waits += s.prepare(view);
         const tess::Camera cam = camera(view);
         const tess::Frustum frustum = tess::Frustum::of(cam);
-        scheduler.run_frame([&](ItemId id, WorkerId w) { s.tessellate(id, cam, frustum, o.settings, scratch[w]); });
+        scheduler.run_frame([&](ItemId id, WorkerId w) { s.tessellate(id, cam, frustum, o.settings, scratch[w], o.cost_multiplier); });
         ++stats.tessellation_frames;
         frames_done.store(stats.tessellation_frames, std::memory_order::relaxed);
         stats.surfaces_tessellated += model.surfaces.size();
@@ -156,7 +157,7 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
           frustum = tess::Frustum::of(cam);
           next = 0;
         }
-        s.tessellate(next++, cam, frustum, o.settings, scratch);
+        s.tessellate(next++, cam, frustum, o.settings, scratch, o.cost_multiplier);
         ++stats.surfaces_tessellated;
       } while (Clock::now() < deadline);
       stats.per_update.push_back(rec);

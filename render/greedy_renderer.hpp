@@ -48,6 +48,9 @@ struct GreedyOptions {
   int png_every = 0;           // also save every K-th update's image (0: none)
   std::string out_dir;         // where images go ("" : none written)
   tess::TessellationSettings settings;
+  // Tessellation-bound ("paper-era") mode: every surface is tessellated this many times per tessellation
+  // frame, so the tessellators are K times slower than natural while the pusher is not (Table 2's second row).
+  int cost_multiplier = 1;
   std::function<void(const std::string&)> progress;  // a line now and then (may be empty)
 };
 

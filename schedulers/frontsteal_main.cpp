@@ -7,6 +7,8 @@
 // before repeat r+1 of any), so slow drifts of a noisy machine spread over all of them. Every frame is
 // audited: each surface ran exactly once, the frame's triangle count equals the serial loop's, and every
 // surface passed the tessellation's own audit (trimmed pieces tiled exactly, area equal to the trim loops').
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -32,9 +35,11 @@
 #include "core/machine_info.hpp"
 #include "core/paired_comparison.hpp"
 #include "core/thread_pinning.hpp"
+#include "schedulers/interference.hpp"
 #include "schedulers/llvm_openmp_child.hpp"
 #include "schedulers/noise_monitor.hpp"
 #include "schedulers/registry.hpp"
+#include "schedulers/round_robin_spread.hpp"
 #include "schedulers/static_assignment.hpp"
 #include "tessellate/camera_path.hpp"
 #include "tessellate/scene_generator.hpp"
@@ -52,6 +57,7 @@ namespace sc = frontsteal::sched;
 namespace ts = frontsteal::tess;
 namespace st = frontsteal::stats;
 namespace nz = frontsteal::noise;
+namespace fi = frontsteal::interference;
 
 namespace {
 
@@ -86,7 +92,11 @@ options:
   --scene S         teapot | teacup | teaspoon | plant:N[:seed] | path to a model file  (default plant:15906)
   --schedulers L    comma-separated scheduler names, or all                 (default all; see --list)
   --threads L       comma-separated worker counts P          (default 1..cores, then 2 x cores)
-  --frames F        frames along the path, half orbit and half zoom                  (default 24)
+  --path K          camera path: orbit-then-zoom (half an orbit of the whole model, half a zoom into a
+                    corner), walkthrough (low among the parts, corner to corner), dense-zoom (from the
+                    overview to a close view of the densest region: a few surfaces' view-dependent cost
+                    dominates)                                                 (default orbit-then-zoom)
+  --frames F        frames along the path                                            (default 24)
   --repeats R|auto  interleaved runs of the path per scheduler and P; medians, paired ratios and their
                     bootstrap intervals are reported. auto: 10 when the warm-up pass predicts they fit in
                     --budget, else as many as fit, at least 5; rounds stop early (not below 5) once
@@ -94,6 +104,13 @@ options:
   --budget S        seconds the measured repeats may take under --repeats auto         (default 180)
   --pin             pin worker w (and the serial loop, as worker 0) to the w-th allowed CPU (off by default;
                     the "spread of the repeats" line says whether it narrows them)
+  --interference DUTY[,pinned|unpinned]
+                    a co-runner child process busy-loops DUTY % (1-100, default 50) of each 10 ms on one
+                    core while the schedulers run (it is paused while the serial loop runs, so T1 stays the
+                    undisturbed reference). pinned: workers pinned as with --pin and the co-runner on worker
+                    0's core (the asymmetric slowdown static lists cannot absorb); unpinned (default): nothing
+                    pinned, the OS places everything. Always killed and reaped at the end (and if frontsteal
+                    dies); its CPU time is reported apart and is not counted as noise          (default off)
   --noise-busy PCT  share of the machine other processes (or steal) may take before a run is unreliable
                     (default 10)
   --noise-spread PCT  spread max/min - 1 of the serial loop's repeats above which a run is unreliable
@@ -121,6 +138,9 @@ utilization below cpu.
 openmp-static-steal (LLVM libomp's static_steal) runs in a child process, frontsteal-llvm-openmp, built with
 clang++-14 beside this program (FRONTSTEAL_LLVM_OPENMP=PATH overrides where it is); where it is missing its
 rows read "not available" with the reason, and the run goes on.
+Round-robin cost spread: per frame, max/min over workers of the cost round robin (item i on worker i mod P)
+gives them, from the serial warm-up pass's measured per-item times and from the cost estimates, and the
+round-robin rows' measured busy time per worker; worst frame and median over frames (paper §3: 1:50).
 
 Outputs in DIR: frontsteal.json (everything, per frame), frontsteal.csv and frontsteal.md (the table),
 frontsteal-speedup.png (speed-up against P), frontsteal-frames.png (frame time along the path).
@@ -132,6 +152,8 @@ struct Options {
   std::vector<std::string> schedulers;  // empty: all exactly-once ones
   std::vector<fs::WorkerId> threads;
   int frames = 24;
+  ts::CameraPathKind path = ts::CameraPathKind::orbit_then_zoom;
+  std::optional<fi::InterferenceSpec> interference;  // absent: off
   int repeats = 0;  // 0: auto (see --repeats)
   double budget_s = 180;
   bool pin = false;
@@ -174,6 +196,18 @@ Options parse(int argc, char** argv) {
       }
     } else if (a == "--frames") {
       o.frames = parse_number<int>(a, args.value(), 1, 100000);
+    } else if (a == "--path") {
+      const std::string_view v = args.value();
+      const auto k = ts::camera_path_named(v);
+      if (!k || (*k != ts::CameraPathKind::orbit_then_zoom && *k != ts::CameraPathKind::walkthrough &&
+                 *k != ts::CameraPathKind::dense_zoom)) {
+        usage_error("--path expects orbit-then-zoom, walkthrough or dense-zoom, got '" + std::string(v) + "'");
+      }
+      o.path = *k;
+    } else if (a == "--interference") {
+      std::string why;
+      o.interference = fi::parse_interference(args.value(), &why);
+      if (!o.interference) usage_error("--interference expects DUTY[,pinned|unpinned]: " + why);
     } else if (a == "--repeats") {
       const std::string_view v = args.value();
       o.repeats = v == "auto" ? 0 : parse_number<int>(a, v, 1, 1000);
@@ -212,6 +246,7 @@ Options parse(int argc, char** argv) {
       usage_error("unknown option '" + std::string(a) + "'");
     }
   }
+  if (o.interference && o.interference->pinned) o.pin = true;  // pinned set-up: workers pinned as by --pin
   if (o.threads.empty()) {
     for (unsigned p = 1; p <= hardware_cores(); ++p) o.threads.push_back(p);
     o.threads.push_back(2 * hardware_cores());
@@ -279,6 +314,7 @@ struct Cell {
   fs::WorkerFrameStats totals;                     // summed over every frame of every repeat
   std::vector<fs::WorkerFrameStats> per_worker;    // [worker], summed over every frame of every repeat
   nz::Usage usage;                                 // the machine while this cell's paths ran (all repeats)
+  std::vector<std::vector<double>> busy_ratio;     // [repeat][frame]: max/min of the workers' busy time
   double busy_over_available = 0, available = 0;   // Σ busy, Σ wall × P (ns)
   double imbalance_sum = 0, imbalance_max = 0;
   std::uint64_t frames_run = 0;
@@ -361,6 +397,10 @@ int main(int argc, char** argv) {
   // scheduler set-up: our own work, so anything else that ran meanwhile was someone else's).
   const nz::ProcSample at_start = nz::sample_now();
   const fs::ThreadPinning pinning;
+  // --interference: the co-runner (started after the warm-ups, reaped by this guard on every way out of main;
+  // PR_SET_PDEATHSIG covers std::exit and being killed). Samples of the noise monitor read its CPU time.
+  fi::CoRunner co_runner;
+  auto sample = [&] { return nz::sample_now(co_runner.pid()); };
 
   // ---- the workload -------------------------------------------------------------------------------------
   Workload wl;
@@ -381,8 +421,10 @@ int main(int argc, char** argv) {
   wl.settings.pixel_tolerance = o.tolerance;
   wl.settings.planted_defect = o.planted_defect;
   const ts::Box box = ts::model_box(wl.model);
+  const ts::DenseRegion dense = ts::densest_region(wl.model);
   for (int f = 0; f < o.frames; ++f) {
-    wl.cameras.push_back(ts::camera_on_path(box, f, o.frames, o.width, o.height));
+    // orbit-then-zoom is camera_on_path itself: the same views as before --path existed.
+    wl.cameras.push_back(ts::camera_on(o.path, box, f, o.frames, o.width, o.height, &dense));
     wl.frusta.push_back(ts::Frustum::of(wl.cameras.back()));
   }
   // Hints for the spatial partitions: patch centres, and the cost estimate of the path's first (overview) view.
@@ -399,8 +441,9 @@ int main(int argc, char** argv) {
   const double load_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   if (!o.quiet) {
-    std::fprintf(stderr, "frontsteal: scene %s: %u surfaces, %d frames (orbit then zoom), %s, %u hardware threads; "
-                 "prepared in %.2f s\n", o.scene.c_str(), n, o.frames, cpu_model().c_str(), cores, load_s);
+    std::fprintf(stderr, "frontsteal: scene %s: %u surfaces, %d frames (path %s), %s, %u hardware threads; "
+                 "prepared in %.2f s\n", o.scene.c_str(), n, o.frames, ts::name(o.path), cpu_model().c_str(), cores,
+                 load_s);
   }
 
   // Tessellates surface `id` for frame `f`, with worker w's scratch; returns its triangle count.
@@ -438,9 +481,22 @@ int main(int argc, char** argv) {
   // ---- the serial reference (T1): a plain loop on this thread ---------------------------------------------
   std::vector<double> serial_path_ms;
   std::vector<std::vector<double>> serial_frame_ms;
+  // Per frame and surface: the warm-up pass's measured time (ns) and the cost estimate, for the round-robin
+  // cost spread (round_robin_spread.hpp).
+  std::vector<std::vector<double>> item_ns(o.frames, std::vector<double>(n)), item_estimate(o.frames, std::vector<double>(n));
+  for (int f = 0; f < o.frames; ++f) {
+    for (fs::ItemId id = 0; id < n; ++id) {
+      item_estimate[f][id] = ts::estimate_cost(wl.prepared[id], ts::plan_surface(wl.prepared[id], wl.cameras[f], wl.frusta[f], wl.settings), wl.settings);
+    }
+  }
   const auto warm_start = std::chrono::steady_clock::now();
-  for (int f = 0; f < o.frames; ++f) {  // warm-up pass; also the reference triangle counts
-    for (fs::ItemId id = 0; id < n; ++id) tessellate(f, id, 0);
+  for (int f = 0; f < o.frames; ++f) {  // warm-up pass; also the reference triangle counts and per-item times
+    for (fs::ItemId id = 0; id < n; ++id) {
+      const auto t0 = std::chrono::steady_clock::now();
+      tessellate(f, id, 0);
+      item_ns[f][id] = static_cast<double>(
+          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+    }
     wl.serial_triangles.push_back(frame_triangles());
     wl.serial_inconsistencies.push_back(frame_count(inconsistent));
     wl.serial_capped.push_back(frame_count(capped));
@@ -486,7 +542,8 @@ int main(int argc, char** argv) {
     std::vector<double> per_frame;
     double total = 0;
     if (o.pin) pinning.pin_this_thread(0);
-    const nz::ProcSample before = nz::sample_now();
+    co_runner.pause();  // T1 is the undisturbed reference (no-op without --interference)
+    const nz::ProcSample before = sample();
     for (int f = 0; f < o.frames; ++f) {
       const auto t0 = std::chrono::steady_clock::now();
       for (fs::ItemId id = 0; id < n; ++id) tessellate(f, id, 0);
@@ -494,7 +551,8 @@ int main(int argc, char** argv) {
       per_frame.push_back(ms);
       total += ms;
     }
-    serial_usage.push_back(nz::usage_between(before, nz::sample_now()));
+    serial_usage.push_back(nz::usage_between(before, sample()));
+    co_runner.resume();
     if (o.pin) pinning.unpin_this_thread();
     serial_path_ms.push_back(total);
     serial_frame_ms.push_back(per_frame);
@@ -512,10 +570,10 @@ int main(int argc, char** argv) {
   auto run_child_path = [&](Cell& c) {
     std::vector<double> per_frame;
     double total = 0;
-    const nz::ProcSample before = nz::sample_now();
+    const nz::ProcSample before = sample();
     const std::uint64_t child_ticks = c.child->cpu_ticks();
     const std::vector<sc::ChildFrame> frames = c.child->run_path();
-    nz::Usage usage = nz::usage_between(before, nz::sample_now());
+    nz::Usage usage = nz::usage_between(before, sample());
     usage.self_ticks += c.child->cpu_ticks() - child_ticks;
     c.usage += usage;
     for (int f = 0; f < o.frames; ++f) {
@@ -556,9 +614,9 @@ int main(int argc, char** argv) {
   };
   auto run_cell_path = [&](Cell& c) {
     if (c.child) return run_child_path(c);
-    std::vector<double> per_frame;
+    std::vector<double> per_frame, ratios;
     double total = 0;
-    const nz::ProcSample before = nz::sample_now();
+    const nz::ProcSample before = sample();
     for (int f = 0; f < o.frames; ++f) {
       auto item = [&](fs::ItemId id, fs::WorkerId w) {
         if (o.pin && t_pinned_as != static_cast<int>(w)) {
@@ -577,6 +635,11 @@ int main(int argc, char** argv) {
       for (std::size_t w = 0; w < st.workers.size(); ++w) c.per_worker[w] += st.workers[w];
       c.busy_over_available += static_cast<double>(st.totals().busy_ns);
       c.available += static_cast<double>(st.wall_ns) * st.workers.size();
+      {
+        std::vector<double> busy;
+        for (const auto& w : st.workers) busy.push_back(static_cast<double>(w.busy_ns));
+        ratios.push_back(sc::load_ratio(busy));
+      }
       c.imbalance_sum += st.imbalance();
       c.imbalance_max = std::max(c.imbalance_max, st.imbalance());
       ++c.frames_run;
@@ -604,8 +667,9 @@ int main(int argc, char** argv) {
         }
       }
     }
-    c.usage += nz::usage_between(before, nz::sample_now());
+    c.usage += nz::usage_between(before, sample());
     unpin_caller();
+    c.busy_ratio.push_back(std::move(ratios));
     c.path_ms.push_back(total);
     c.frame_ms.push_back(per_frame);
   };
@@ -617,7 +681,8 @@ int main(int argc, char** argv) {
       if (c.unavailable.empty()) {
         sc::ChildWorkload cw;
         cw.scene = o.scene;
-        cw.frames = o.frames;  // path: orbit-then-zoom, the child's default, as camera_on_path above
+        cw.frames = o.frames;
+        cw.path = ts::name(o.path);
         cw.tolerance = o.tolerance;
         cw.width = o.width;
         cw.height = o.height;
@@ -665,7 +730,20 @@ int main(int argc, char** argv) {
     if (!c.unavailable.empty()) not_available.push_back(std::move(c));
   }
   std::erase_if(cells, [](const Cell& c) { return !c.unavailable.empty() || (!c.instance && !c.child); });
-  const nz::ProcSample measure_start = nz::sample_now();
+  if (o.interference) {
+    try {
+      co_runner = fi::CoRunner::start({.duty = o.interference->duty, .period_us = 10'000,
+                                       .cpu = o.interference->pinned ? pinning.cpu_of(0) : -1});
+    } catch (const std::exception& e) {
+      std::cerr << kProgram << ": cannot start the interference co-runner: " << e.what() << '\n';
+      return 1;
+    }
+    if (!o.quiet) {
+      std::fprintf(stderr, "frontsteal: interference on: co-runner pid %d, %s\n", static_cast<int>(co_runner.pid()),
+                   o.interference->describe().c_str());
+    }
+  }
+  const nz::ProcSample measure_start = sample();
   const auto rounds_start = std::chrono::steady_clock::now();
 
   for (int r = 0; r < o.repeats; ++r) {
@@ -699,9 +777,11 @@ int main(int argc, char** argv) {
 
   // The noise monitor's "after" window: a short pause with nothing of ours running (before gnuplot, whose
   // CPU time would count as another process's).
-  const nz::ProcSample measure_end = nz::sample_now();
+  const nz::ProcSample measure_end = sample();
+  co_runner.pause();
   std::this_thread::sleep_for(std::chrono::milliseconds(250));
-  const nz::ProcSample at_end = nz::sample_now();
+  const nz::ProcSample at_end = sample();
+  co_runner.stop();  // killed and reaped now: nothing of ours runs while the results are written
 
   // ---- results ------------------------------------------------------------------------------------------
   const double t1_ms = median(serial_path_ms);
@@ -797,6 +877,83 @@ int main(int argc, char** argv) {
              << " / " << fixed(100 * after_usage.steal_share(), 1) << " %; load average " << fixed(at_start.load1, 2)
              << " before, " << fixed(at_end.load1, 2) << " after (thresholds: " << fixed(100 * o.noise.other_share, 0)
              << " % busy, " << fixed(100 * o.noise.spread, 0) << " % spread)";
+  // The workload's set-up: the camera path, the round-robin cost spread per P, the interference.
+  std::ostringstream path_line;
+  path_line << "camera path: " << ts::name(o.path);
+  if (o.path == ts::CameraPathKind::dense_zoom) {
+    const glm::dvec3 c = dense.box.centre();
+    path_line << " (ends at the densest region: " << dense.surfaces << " surfaces centred in one grid cell of edge "
+              << fixed(dense.cell_edge, 2) << " (the median control-box diagonal), around (" << fixed(c.x, 1) << ", "
+              << fixed(c.y, 1) << ", " << fixed(c.z, 1) << "), box diagonal "
+              << fixed(glm::length(dense.box.hi - dense.box.lo), 2) << ")";
+  }
+  {
+    // How much a few surfaces dominate: the 16 costliest surfaces' share of a frame's estimated cost.
+    double top_max = 0;
+    int top_frame = 0;
+    for (int f = 0; f < o.frames; ++f) {
+      std::vector<double> c = item_estimate[f];
+      const std::size_t k = std::min<std::size_t>(16, c.size());
+      std::partial_sort(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(k), c.end(), std::greater<>());
+      double top = 0, total = 0;
+      for (std::size_t i = 0; i < c.size(); ++i) (i < k ? top : total) += c[i];
+      total += top;
+      if (total > 0 && top / total > top_max) {
+        top_max = top / total;
+        top_frame = f;
+      }
+    }
+    path_line << "; the 16 costliest surfaces carry up to " << fixed(100 * top_max, 1)
+              << " % of a frame's estimated cost (frame " << top_frame << ")";
+  }
+  struct SpreadRow {
+    fs::WorkerId p;
+    sc::CostSpread measured, estimated;
+    std::optional<sc::CostSpread> busy;  // from the round-robin row, when it ran at this P
+  };
+  std::vector<SpreadRow> spreads;
+  for (fs::WorkerId p : o.threads) {
+    if (p < 2) continue;
+    SpreadRow r{p, sc::round_robin_spread(item_ns, p), sc::round_robin_spread(item_estimate, p), std::nullopt};
+    for (const Cell& c : cells) {
+      if (c.scheduler != "round-robin" || c.workers != p || c.busy_ratio.empty()) continue;
+      std::vector<double> per_frame;  // median over repeats, per frame
+      for (int f = 0; f < o.frames; ++f) {
+        std::vector<double> v;
+        for (const auto& rep : c.busy_ratio) v.push_back(rep[f]);
+        per_frame.push_back(median(v));
+      }
+      r.busy = sc::summarize_spread(std::move(per_frame));
+    }
+    spreads.push_back(std::move(r));
+  }
+  using sc::ratio_text;
+  std::ostringstream spread_summary;
+  spread_summary << "round-robin cost spread (max/min over workers of the per-frame cost, item i on worker i mod P; "
+                    "worst frame / median over frames; paper §3: 1:50 for static schemes):";
+  if (spreads.empty()) spread_summary << " no P >= 2 was run";
+  for (const SpreadRow& r : spreads) {
+    spread_summary << "\n  P=" << r.p << ": serial loop's measured per-item times dealt round robin "
+                   << ratio_text(r.measured.worst) << " (frame " << r.measured.worst_frame << ") / "
+                   << ratio_text(r.measured.median) << "; cost estimates " << ratio_text(r.estimated.worst) << " / "
+                   << ratio_text(r.estimated.median) << "; round-robin row's busy time "
+                   << (r.busy ? ratio_text(r.busy->worst) + " / " + ratio_text(r.busy->median) : std::string("not run"));
+  }
+  nz::Usage cells_usage;
+  for (const Cell& c : cells) cells_usage += c.usage;
+  const double ticks_per_s = static_cast<double>(sysconf(_SC_CLK_TCK));
+  const double co_runner_core_share =
+      cells_usage.wall_s > 0 ? static_cast<double>(cells_usage.known_ticks) / (cells_usage.wall_s * ticks_per_s) : 0;
+  std::ostringstream interference_line;
+  if (o.interference) {
+    interference_line << "interference: ON, a co-runner child process busy-looping " << o.interference->describe()
+                      << ", during every scheduler row (paused during the serial loop: T1 is undisturbed); it used "
+                      << fixed(100 * co_runner_core_share, 1) << " % of one core while the schedulers ran "
+                      << "(its own CPU time from /proc/<pid>/stat, reported here and not counted as noise)";
+  } else {
+    interference_line << "interference: off";
+  }
+
   std::ostringstream warning;
   if (unreliable > 0) {
     warning << "WARNING: noisy machine: " << unreliable << " of " << verdicts
@@ -878,20 +1035,23 @@ int main(int argc, char** argv) {
             << "imbalance = max/mean busy per frame, averaged; cpu, off-cpu = workers' thread CPU time and time "
             << "in the frame without a CPU, over wall x P\n"
             << "repeats: " << o.repeats << " (" << repeats_note << "); T_P/T_ref = median of per-repeat ratios, "
-            << "95 % bootstrap interval; verdict at 95 %, effect = change in path time\n\n"
+            << "95 % bootstrap interval; verdict at 95 %, effect = change in path time\n"
+            << path_line.str() << "\n" << interference_line.str() << "\n" << spread_summary.str() << "\n\n"
             << table.str() << '\n' << child_note.str() << tessellation_audit.str() << '\n' << spread_line.str() << '\n'
             << noise_line.str() << '\n';
 
   {
     std::ofstream md(dir / "frontsteal.md");
     md << "# frontsteal main job (measured)\n\n"
-       << "Scene `" << o.scene << "` (" << n << " surfaces), " << o.frames << " frames along the camera path (orbit, "
-       << "then zoom), " << o.repeats << " interleaved repeats (medians), tolerance " << o.tolerance << " px, "
+       << "Scene `" << o.scene << "` (" << n << " surfaces), " << o.frames << " frames along the camera path `"
+       << ts::name(o.path) << "`, " << o.repeats << " interleaved repeats (medians), tolerance " << o.tolerance << " px, "
        << o.width << "x" << o.height << ". Machine: " << machine << ". Commit " << FRONTSTEAL_GIT_COMMIT << ".\n\n"
        << "Verdicts: median of the per-repeat ratios T_P[r] / T_ref[r] with its 95 % bootstrap interval; ahead / "
        << "behind when the interval lies below / above 1; effect = change in path time. cpu and off-cpu: the "
        << "workers' thread CPU time and their time in the frame without a CPU, over wall x P.\n\n"
-       << table.str() << '\n' << child_note.str() << (child_note.str().empty() ? "" : "\n") << tessellation_audit.str() << ".\n\n" << spread_line.str() << ".\n\n"
+       << "**" << path_line.str() << "; " << interference_line.str() << ".**\n\n```\n" << spread_summary.str()
+       << "\n```\n\n" << table.str() << '\n' << child_note.str() << (child_note.str().empty() ? "" : "\n")
+       << tessellation_audit.str() << ".\n\n" << spread_line.str() << ".\n\n"
        << noise_line.str() << ".\n";
     if (unreliable > 0) md << "\n**" << warning.str().substr(0, warning.str().find('\n')) << "**\n\n```\n" << warning.str() << "```\n";
   }
@@ -933,8 +1093,29 @@ int main(int argc, char** argv) {
        << ",\n  \"frames\": " << o.frames << ",\n  \"repeats\": " << o.repeats << ",\n  \"tolerance_px\": "
        << o.tolerance << ",\n  \"image\": [" << o.width << ", " << o.height << "],\n  \"hardware_threads\": " << cores
        << ",\n  \"repeats_note\": \"" << json_escape(repeats_note) << "\",\n  \"pinned\": " << (o.pin ? "true" : "false")
+       << ",\n  \"path\": \"" << ts::name(o.path) << "\", \"path_note\": \"" << json_escape(path_line.str()) << "\""
+       << ",\n  \"interference\": ";
+    if (o.interference) {
+      js << "{\"on\": true, \"duty_pct\": " << 100 * o.interference->duty << ", \"setup\": \""
+         << (o.interference->pinned ? "pinned" : "unpinned") << "\", \"period_ms\": 10, \"co_runner_cpu\": "
+         << (o.interference->pinned ? pinning.cpu_of(0) : -1) << ", \"co_runner_core_share_measured\": "
+         << co_runner_core_share << ", \"serial_loop\": \"co-runner paused\", \"note\": \""
+         << json_escape(interference_line.str()) << "\"}";
+    } else {
+      js << "{\"on\": false}";
+    }
+    js << ",\n  \"round_robin_spread\": [";
+    for (std::size_t i = 0; i < spreads.size(); ++i) {
+      const SpreadRow& r = spreads[i];
+      js << (i ? ",\n    " : "\n    ") << "{\"workers\": " << r.p << ", \"serial_item_times\": " << sc::to_json(r.measured)
+         << ", \"estimates\": " << sc::to_json(r.estimated) << ", \"round_robin_busy\": "
+         << (r.busy ? sc::to_json(*r.busy) : std::string("null")) << "}";
+    }
+    js << "]";
+    js
        << ",\n  \"noise\": {\"before\": " << usage_json(before_usage, o.noise) << ",\n            \"during\": "
        << usage_json(during_usage, o.noise) << ",\n            \"after\": " << usage_json(after_usage, o.noise)
+       << ",\n            \"co_runner_share_during\": " << during_usage.known_share()
        << ",\n            \"load1_before\": " << at_start.load1 << ", \"load1_after\": " << at_end.load1
        << ", \"serial_spread_pct\": " << 100 * serial_spread << ", \"busy_threshold_pct\": "
        << 100 * o.noise.other_share << ", \"spread_threshold_pct\": " << 100 * o.noise.spread
@@ -1051,7 +1232,10 @@ int main(int argc, char** argv) {
        << ") with lines dashtype 2 lc 'black' title 'ideal'\n"
        << "set output 'frontsteal-frames.png'\n"
        << "set title 'Frame time along the camera path (measured), P = " << best_p
-       << " (frames 0-" << o.frames / 2 - 1 << " orbit, then zoom)'\n"
+       << (o.path == ts::CameraPathKind::orbit_then_zoom
+               ? " (frames 0-" + std::to_string(o.frames / 2 - 1) + " orbit, then zoom)"
+               : std::string(" (path ") + ts::name(o.path) + ")")
+       << (o.interference ? ", interference on" : "") << "'\n"
        << "set xlabel 'frame'\nset ylabel 'ms'\nset autoscale x\nset yrange [0:*]\n"
        << "plot for [i=0:" << blocks - 1 << "] 'frontsteal-frames.dat' index i using 1:2 with linespoints "
           "lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1)\n";

@@ -1,6 +1,8 @@
 // noise_monitor.cpp — parsing /proc and deciding "busy" (noise_monitor.hpp).
 #include "schedulers/noise_monitor.hpp"
 
+#include "schedulers/interference.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -65,9 +67,11 @@ ProcSample parse_sample(std::string_view proc_stat, std::string_view self_stat, 
   return s;
 }
 
-ProcSample sample_now() {
+ProcSample sample_now(pid_t known) {
   const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-  return parse_sample(read_file("/proc/stat"), read_file("/proc/self/stat"), read_file("/proc/loadavg"), now);
+  ProcSample s = parse_sample(read_file("/proc/stat"), read_file("/proc/self/stat"), read_file("/proc/loadavg"), now);
+  if (known > 0) s.known_ticks = interference::process_ticks(known);
+  return s;
 }
 
 Usage& Usage::operator+=(const Usage& o) {
@@ -75,13 +79,20 @@ Usage& Usage::operator+=(const Usage& o) {
   busy_ticks += o.busy_ticks;
   steal_ticks += o.steal_ticks;
   self_ticks += o.self_ticks;
+  known_ticks += o.known_ticks;
   wall_s += o.wall_s;
   windows += o.windows;
   ok = ok && o.ok;
   return *this;
 }
 
-std::uint64_t Usage::other_ticks() const { return busy_ticks > self_ticks ? busy_ticks - self_ticks : 0; }
+std::uint64_t Usage::other_ticks() const {
+  const std::uint64_t ours = self_ticks + known_ticks;
+  return busy_ticks > ours ? busy_ticks - ours : 0;
+}
+double Usage::known_share() const {
+  return total_ticks ? static_cast<double>(known_ticks) / static_cast<double>(total_ticks) : 0.0;
+}
 double Usage::other_share() const {
   return total_ticks ? static_cast<double>(other_ticks()) / static_cast<double>(total_ticks) : 0.0;
 }
@@ -101,6 +112,7 @@ Usage usage_between(const ProcSample& a, const ProcSample& b) {
   u.busy_ticks = delta(a.busy_ticks, b.busy_ticks);
   u.steal_ticks = delta(a.steal_ticks, b.steal_ticks);
   u.self_ticks = delta(a.self_ticks, b.self_ticks);
+  u.known_ticks = delta(a.known_ticks, b.known_ticks);  // a co-runner reaped in the window counts 0, not less
   return u;
 }
 

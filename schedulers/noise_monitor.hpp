@@ -11,9 +11,16 @@
 // window also needs at least kMinOtherTicks ticks of others' work before it counts as busy: a quiet
 // 20 ms window must not be flagged by one stray tick.
 //
+// A process of ours that is known to take CPU on purpose (the interference co-runner, interference.hpp) is
+// not "other processes": sample_now(pid) also reads its utime + stime from /proc/<pid>/stat (known_ticks),
+// and other_ticks() leaves them out, so the co-runner is reported on its own (known_share) while any
+// genuinely external load is still flagged.
+//
 // The decision (assess, spread_of) is pure, over parsed samples, so tests drive it with synthetic
 // /proc text for both a quiet and a loaded machine; sample_now() is the only part that reads files.
 #pragma once
+
+#include <sys/types.h>
 
 #include <cstdint>
 #include <string>
@@ -28,6 +35,7 @@ struct ProcSample {
   std::uint64_t busy_ticks = 0;    // user + nice + system + irq + softirq (guest time is inside user)
   std::uint64_t steal_ticks = 0;
   std::uint64_t self_ticks = 0;    // this process: utime + stime
+  std::uint64_t known_ticks = 0;   // the known co-runner's utime + stime (0 when none, or gone)
   double load1 = 0;                // 1-minute load average
   double wall_s = 0;               // steady clock when sampled
 };
@@ -35,17 +43,18 @@ struct ProcSample {
 // Parses the text of /proc/stat, /proc/self/stat and /proc/loadavg; ok = false if any is malformed.
 ProcSample parse_sample(std::string_view proc_stat, std::string_view self_stat, std::string_view loadavg,
                         double wall_s);
-// Reads the three files now.
-ProcSample sample_now();
+// Reads the three files now, and /proc/<known>/stat when known > 0 (the co-runner; see above).
+ProcSample sample_now(pid_t known = 0);
 
 // What happened between two samples; windows add up (a verdict depends on many short windows).
 struct Usage {
-  std::uint64_t total_ticks = 0, busy_ticks = 0, steal_ticks = 0, self_ticks = 0;
+  std::uint64_t total_ticks = 0, busy_ticks = 0, steal_ticks = 0, self_ticks = 0, known_ticks = 0;
   double wall_s = 0;
   int windows = 0;
   bool ok = true;
   Usage& operator+=(const Usage& o);
-  std::uint64_t other_ticks() const;  // busy − self, never negative (the two counters round differently)
+  std::uint64_t other_ticks() const;  // busy − self − known, never negative (the counters round differently)
+  double known_share() const;         // the known co-runner's, of all ticks in the window(s)
   double other_share() const;         // of all ticks in the window(s)
   double steal_share() const;
 };

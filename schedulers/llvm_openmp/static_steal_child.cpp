@@ -87,7 +87,7 @@ options:
   --workers P        OpenMP threads (required)
   --scene S          as frontsteal's --scene                                       (default plant:15906)
   --frames F         frames along the path                                          (default 24)
-  --path NAME        orbit-then-zoom | orbit | zoom | walkthrough                   (default orbit-then-zoom)
+  --path NAME        orbit-then-zoom | orbit | zoom | walkthrough | dense-zoom                (default orbit-then-zoom)
   --tolerance PX     screen-space tolerance in pixels                               (default 1)
   --size WxH         image size                                                     (default 1280x720)
   --grain G          items per chunk                                                (default 1)
@@ -129,7 +129,7 @@ Options parse(int argc, char** argv) {
       const std::string_view v = args.value();
       bool found = false;
       for (auto k : {ts::CameraPathKind::orbit_then_zoom, ts::CameraPathKind::orbit, ts::CameraPathKind::zoom,
-                     ts::CameraPathKind::walkthrough}) {
+                     ts::CameraPathKind::walkthrough, ts::CameraPathKind::dense_zoom}) {
         if (v == ts::name(k)) o.path = k, found = true;
       }
       if (!found) cli::usage_error(kProgram, "--path: unknown path '" + std::string(v) + "'");
@@ -271,10 +271,11 @@ int main(int argc, char** argv) {
   settings.pixel_tolerance = o.tolerance;
   settings.planted_defect = o.defect;
   const ts::Box box = ts::model_box(model);
+  const ts::DenseRegion dense = ts::densest_region(model);  // dense-zoom's target, as the parent computes it
   std::vector<ts::Camera> cameras;
   std::vector<ts::Frustum> frusta;
   for (int f = 0; f < o.frames; ++f) {
-    cameras.push_back(ts::camera_on(o.path, box, f, o.frames, o.width, o.height));
+    cameras.push_back(ts::camera_on(o.path, box, f, o.frames, o.width, o.height, &dense));
     frusta.push_back(ts::Frustum::of(cameras.back()));
   }
   std::vector<ts::TessellationScratch> scratch(static_cast<std::size_t>(P));
