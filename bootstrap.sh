@@ -32,6 +32,10 @@ packages=(
   gnuplot-nox
   # greedy rendering (render/): headless OpenGL through EGL (Mesa's llvmpipe without a GPU), PNG output
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
+  # the distributed layer (distributed/, frontsteal-mpi and its ctest entries): Open MPI 4.1 (mpirun, mpicxx,
+  # MPI-3 one-sided communication). Optional at configure time; with MPICH instead, swap these two names for
+  # mpich libmpich-dev
+  openmpi-bin libopenmpi-dev
 )
 
 missing=()

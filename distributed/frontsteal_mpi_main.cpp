@@ -98,6 +98,7 @@ ranks than cores add --oversubscribe --mca mpi_yield_when_idle 1.
   --plant-defect D     negative controls: none | skip-reread (rma thief skips T4/T5) |
                        request-keeps-share (request owner sends a share and keeps it)
   --force-overlap      rma thieves wait, before T3, until the victim has claimed into the planned share
+  --require-steals     exit 1 unless rma and request each made at least one steal (tests: stealing was exercised)
   --calibrate          measure get/put/CAS/fetch-and-op/flush latency and the owner's per-item costs, then exit
   --quiet              no progress lines
   --help               this text
@@ -158,6 +159,7 @@ struct Options {
   std::string defect = "none";
   bool force_overlap = false;
   bool calibrate = false;
+  bool require_steals = false;
   bool quiet = false;
 };
 
@@ -215,6 +217,8 @@ Options parse(int argc, char** argv) {
       }
     } else if (a == "--force-overlap") {
       o.force_overlap = true;
+    } else if (a == "--require-steals") {
+      o.require_steals = true;
     } else if (a == "--calibrate") {
       o.calibrate = true;
     } else if (a == "--quiet") {
@@ -308,6 +312,7 @@ struct RankStats {
   double owner_overhead_s = 0;  // owner-path protocol time (claims, polls), measured around the calls
   double owner_ops = 0;         // claims (rma) / polls (request)
   double requests_served = 0;
+  double owner_overhead_median_ns = 0;  // median of the recorded owner-path samples (robust to preemption)
 };
 constexpr int kStatFields = sizeof(RankStats) / sizeof(double);
 
@@ -315,6 +320,7 @@ constexpr int kStatFields = sizeof(RankStats) / sizeof(double);
 std::atomic<std::int64_t> g_last_progress{0};
 std::atomic<int> g_frame{-1};
 std::atomic<const char*> g_phase{"start"};
+std::atomic<bool> g_watchdog_armed{false};  // armed once the frames start (the serial reference may be long)
 void progress() { g_last_progress.store(Clock::now().time_since_epoch().count(), std::memory_order_relaxed); }
 
 struct Frame {
@@ -350,16 +356,37 @@ class Runner {
         std::fflush(stderr);
         std::_Exit(3);
       }
-      if (fr.f == o_.stall_frame && rank_ == o_.stall_rank) {
-        std::fprintf(stderr, "%s: rank %d: --stall: sleeping %d ms in frame %d\n", kProgram.data(), rank_,
-                     o_.stall_ms, fr.f);
-        std::this_thread::sleep_for(std::chrono::milliseconds(o_.stall_ms));
-        progress();
-      }
+      if (fr.f == o_.stall_frame && rank_ == o_.stall_rank) stall(fr.f);
     }
   }
 
-  void begin_frame() { first_item_done_ = false; }
+  void begin_frame(const std::string& scheduler) {
+    first_item_done_ = false;
+    scheduler_ = &scheduler;
+  }
+
+  // --stall: sleep MS ms between two items (never between O1 and O4). Under rma, also until a thief has
+  // lowered this rank's End (its work was stolen while it stalled), bounded by 60 s: the steal is then a
+  // fact the test can assert, not a matter of timing.
+  void stall(int frame) {
+    std::fprintf(stderr, "%s: rank %d: --stall: stalling %d ms in frame %d (%s)\n", kProgram.data(), rank_,
+                 o_.stall_ms, frame, scheduler_->c_str());
+    const auto start = Clock::now();
+    const std::uint32_t end_before = win_.local_u32(fm::kEnd).load(std::memory_order_acquire);
+    std::this_thread::sleep_for(std::chrono::milliseconds(o_.stall_ms));
+    if (*scheduler_ == "rma") {
+      while (win_.local_u32(fm::kEnd).load(std::memory_order_acquire) == end_before &&
+             Clock::now() - start < std::chrono::seconds(60)) {
+        win_.sync();
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        progress();
+      }
+      const std::uint32_t end_after = win_.local_u32(fm::kEnd).load(std::memory_order_acquire);
+      std::fprintf(stderr, "%s: rank %d: --stall: %s while stalled (End %u -> %u)\n", kProgram.data(), rank_,
+                   end_after < end_before ? "work was stolen" : "NOTHING was stolen", end_before, end_after);
+    }
+    progress();
+  }
 
   // ---- rma: load stealing over the window ----
   void rma_frame(Frame& fr, fm::RmaOwner& owner, fm::RmaThief& thief, fs::RangeList& log) {
@@ -369,6 +396,7 @@ class Runner {
     fm::RmaStealHooks hooks;
     hooks.defects = defects_;
     hooks.force_overlap = o_.force_overlap;
+    std::uint32_t failed_rounds = 0;
     while (!active_.all_idle()) {  // A3
       bool got = false;
       for (int v : victims_) {
@@ -386,7 +414,15 @@ class Runner {
         got = true;
         break;
       }
-      if (!got) std::this_thread::yield();
+      // Back off after fruitless rounds (up to 256 us): with more ranks than cores an idle thief's polling
+      // takes the CPU from the very owner it waits for.
+      if (got) {
+        failed_rounds = 0;
+      } else if (++failed_rounds < 4) {
+        std::this_thread::yield();
+      } else {
+        std::this_thread::sleep_for(std::chrono::microseconds(1u << std::min<std::uint32_t>(failed_rounds - 4, 8)));
+      }
     }
   }
 
@@ -396,6 +432,7 @@ class Runner {
     drain_request(fr, list, log);
     active_.leave();  // A2
     int outstanding = -1;
+    std::uint32_t empty_replies = 0;
     std::size_t next_victim = 0;
     Clock::time_point sent_at{};
     while (true) {
@@ -421,7 +458,13 @@ class Runner {
       fm::check_mpi(MPI_Recv(buf.data(), words, MPI_UINT32_T, outstanding, kTagReply, MPI_COMM_WORLD,
                              MPI_STATUS_IGNORE), "MPI_Recv");
       outstanding = -1;
-      if (words == 0) continue;
+      if (words == 0) {  // an empty answer: back off a little before asking the next victim (as rma's idle loop)
+        if (++empty_replies >= 4) {
+          std::this_thread::sleep_for(std::chrono::microseconds(1u << std::min<std::uint32_t>(empty_replies - 4, 8)));
+        }
+        continue;
+      }
+      empty_replies = 0;
       const double lat = std::chrono::duration<double>(Clock::now() - sent_at).count();
       stats_.steals += 1;
       stats_.steal_latency_s += lat;
@@ -446,8 +489,7 @@ class Runner {
     while (true) {
       const auto t0 = Clock::now();
       const std::uint64_t s = win_.fetch_add_u64(0, fm::kNextItem, grain);
-      stats_.owner_overhead_s += std::chrono::duration<double>(Clock::now() - t0).count();
-      stats_.owner_ops += 1;
+      record_owner_op(Clock::now() - t0);
       if (s >= wl_.n) break;
       const std::uint64_t e = std::min<std::uint64_t>(s + grain, wl_.n);
       for (std::uint64_t id = s; id < e; ++id) execute(fr, static_cast<fs::ItemId>(id));
@@ -461,7 +503,14 @@ class Runner {
     }
   }
 
-  RankStats& stats() { return stats_; }
+  RankStats& stats() {
+    if (!owner_samples_.empty()) {
+      auto mid = owner_samples_.begin() + static_cast<std::ptrdiff_t>(owner_samples_.size() / 2);
+      std::nth_element(owner_samples_.begin(), mid, owner_samples_.end());
+      stats_.owner_overhead_median_ns = *mid;
+    }
+    return stats_;
+  }
   fm::RmaActiveCount& active() { return active_; }
 
  private:
@@ -469,8 +518,7 @@ class Runner {
     while (true) {
       const auto t0 = Clock::now();
       const std::optional<fs::ItemId> id = owner.try_claim();
-      stats_.owner_overhead_s += std::chrono::duration<double>(Clock::now() - t0).count();
-      stats_.owner_ops += 1;
+      record_owner_op(Clock::now() - t0);
       if (!id) return;
       fs::append_merging(log, {*id, *id + 1});
       execute(fr, *id);
@@ -498,10 +546,7 @@ class Runner {
       MPI_Status st;
       const auto t0 = Clock::now();
       fm::check_mpi(MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, &st), "MPI_Iprobe");
-      if (list != nullptr) {
-        stats_.owner_overhead_s += std::chrono::duration<double>(Clock::now() - t0).count();
-        stats_.owner_ops += 1;
-      }
+      if (list != nullptr) record_owner_op(Clock::now() - t0);
       if (!flag) return;
       std::int32_t frame = 0;
       fm::check_mpi(MPI_Recv(&frame, 1, MPI_INT32_T, st.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD,
@@ -539,6 +584,12 @@ class Runner {
       stats_.requests_served += 1;
     }
   }
+  void record_owner_op(Clock::duration d) {
+    const double ns = std::chrono::duration<double, std::nano>(d).count();
+    stats_.owner_overhead_s += ns * 1e-9;
+    stats_.owner_ops += 1;
+    if (owner_samples_.size() < (1u << 21)) owner_samples_.push_back(static_cast<float>(ns));
+  }
   bool defects_keep_share() const { return o_.defect == "request-keeps-share"; }
 
   const Options& o_;
@@ -549,7 +600,9 @@ class Runner {
   std::vector<int> victims_;
   fs::Defect defects_ = fs::Defect::kNone;
   RankStats stats_;
+  std::vector<float> owner_samples_;
   bool first_item_done_ = false;
+  const std::string* scheduler_ = nullptr;
 };
 
 struct SchedulerResult {
@@ -595,7 +648,7 @@ bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int 
     progress();
     const auto t0 = Clock::now();
     Frame fr{f, &counts};
-    runner.begin_frame();
+    runner.begin_frame(name);
     if (name == "rma") {
       runner.rma_frame(fr, owner, thief, log);
       list = log;
@@ -660,6 +713,7 @@ void start_watchdog(double limit_s, int rank) {
   std::thread([limit_s, rank] {
     while (true) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (!g_watchdog_armed.load(std::memory_order_relaxed)) continue;
       const auto last = Clock::time_point(Clock::duration(g_last_progress.load(std::memory_order_relaxed)));
       const double idle = std::chrono::duration<double>(Clock::now() - last).count();
       if (idle > limit_s) {
@@ -761,6 +815,8 @@ int main(int argc, char** argv) {
                      std::chrono::duration<double>(Clock::now() - load0).count());
       }
       std::vector<SchedulerResult> results;
+      progress();
+      g_watchdog_armed.store(true);
       for (const std::string& s : o.schedulers) {
         results.emplace_back();
         if (!run_scheduler(s, o, wl, rank, ranks, win, results.back())) {
@@ -768,11 +824,25 @@ int main(int argc, char** argv) {
           break;
         }
       }
+      if (rank == 0 && status == 0 && o.require_steals) {
+        for (const SchedulerResult& r : results) {
+          double steals = 0;
+          for (const RankStats& s : r.ranks) steals += s.steals;
+          if ((r.name == "rma" || r.name == "request") && steals == 0) {
+            std::fprintf(stderr, "%s: --require-steals: scheduler %s made no steal in %d frames\n", kProgram.data(),
+                         r.name.c_str(), o.frames);
+            status = 1;
+          }
+        }
+      }
+      MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
       if (rank == 0 && status == 0) {
         std::printf("\nfrontsteal-mpi: %d ranks, %s (%u items), %d frames, commit %s (measured)\n", ranks,
                     o.scene.c_str(), wl.n, o.frames, FRONTSTEAL_GIT_COMMIT);
         std::printf("%-8s %9s %11s | %4s %8s %9s %7s %7s %12s %11s %12s\n", "sched", "frames/s", "median ms",
                     "rank", "busy s", "items", "steals", "tries", "lat mean us", "bytes", "owner ns/op");
+        std::printf("%-8s %9s %11s | %4s %8s %9s %7s %7s %12s %11s %12s\n", "", "", "(max ms)", "", "", "", "", "",
+                    "", "", "(median)");
         for (const SchedulerResult& r : results) {
           double total = 0;
           for (double x : r.frame_s) total += x;
@@ -781,9 +851,12 @@ int main(int argc, char** argv) {
             std::printf("%-8s %9s %11s | %4zu %8.3f %9.0f %7.0f %7.0f %12.1f %11.0f %12.1f\n",
                         k == 0 ? r.name.c_str() : "",
                         k == 0 ? std::to_string(static_cast<double>(r.frame_s.size()) / total).substr(0, 8).c_str() : "",
-                        k == 0 ? std::to_string(1000 * median(r.frame_s)).substr(0, 8).c_str() : "", k, s.busy_s,
-                        s.items, s.steals, s.steal_attempts, s.steals > 0 ? 1e6 * s.steal_latency_s / s.steals : 0.0,
-                        s.bytes, s.owner_ops > 0 ? 1e9 * s.owner_overhead_s / s.owner_ops : 0.0);
+                        k == 0 ? std::to_string(1000 * median(r.frame_s)).substr(0, 8).c_str()
+                               : k == 1 ? ("(" + std::to_string(1000 * *std::max_element(r.frame_s.begin(),
+                                                                                       r.frame_s.end())).substr(0, 7) + ")").c_str()
+                                        : "",
+                        k, s.busy_s, s.items, s.steals, s.steal_attempts,
+                        s.steals > 0 ? 1e6 * s.steal_latency_s / s.steals : 0.0, s.bytes, s.owner_overhead_median_ns);
           }
         }
         std::printf("every frame audited: each item exactly once, triangles equal to the serial loop's\n");
@@ -797,7 +870,8 @@ int main(int argc, char** argv) {
             double total = 0;
             for (double x : r.frame_s) total += x;
             js << "    {\"name\": \"" << r.name << "\", \"frames_per_s\": " << r.frame_s.size() / total
-               << ", \"median_frame_ms\": " << 1000 * median(r.frame_s) << ", \"audited_frames\": "
+               << ", \"median_frame_ms\": " << 1000 * median(r.frame_s)
+               << ", \"max_frame_ms\": " << 1000 * *std::max_element(r.frame_s.begin(), r.frame_s.end()) << ", \"audited_frames\": "
                << r.audited_frames << ", \"per_rank\": [";
             for (std::size_t k = 0; k < r.ranks.size(); ++k) {
               const RankStats& s = r.ranks[k];
@@ -806,7 +880,8 @@ int main(int argc, char** argv) {
                  << ", \"steal_latency_mean_us\": " << (s.steals > 0 ? 1e6 * s.steal_latency_s / s.steals : 0.0)
                  << ", \"steal_latency_max_us\": " << 1e6 * s.steal_latency_max_s << ", \"bytes_moved\": "
                  << s.bytes << ", \"owner_overhead_ns_per_op\": "
-                 << (s.owner_ops > 0 ? 1e9 * s.owner_overhead_s / s.owner_ops : 0.0) << ", \"owner_ops\": "
+                 << (s.owner_ops > 0 ? 1e9 * s.owner_overhead_s / s.owner_ops : 0.0)
+                 << ", \"owner_overhead_median_ns\": " << s.owner_overhead_median_ns << ", \"owner_ops\": "
                  << s.owner_ops << ", \"requests_served\": " << s.requests_served << "}";
             }
             js << "]}" << (i + 1 < results.size() ? "," : "") << "\n";
