@@ -98,6 +98,8 @@ ranks than cores add --oversubscribe --mca mpi_yield_when_idle 1.
   --plant-defect D     negative controls: none | skip-reread (rma thief skips T4/T5) |
                        request-keeps-share (request owner sends a share and keeps it)
   --force-overlap      rma thieves wait, before T3, until the victim has claimed into the planned share
+  --owner-fence F      the rma owner's F1: cpu (a seq_cst fence, no MPI call on the owner path; default) |
+                       win-sync (MPI_Win_sync + the fence: the standard's barrier, but a progress call per claim)
   --require-steals     exit 1 unless rma and request each made at least one steal (tests: stealing was exercised)
   --calibrate          measure get/put/CAS/fetch-and-op/flush latency and the owner's per-item costs, then exit
   --quiet              no progress lines
@@ -160,6 +162,7 @@ struct Options {
   bool force_overlap = false;
   bool calibrate = false;
   bool require_steals = false;
+  std::string owner_fence = "cpu";
   bool quiet = false;
 };
 
@@ -217,6 +220,11 @@ Options parse(int argc, char** argv) {
       }
     } else if (a == "--force-overlap") {
       o.force_overlap = true;
+    } else if (a == "--owner-fence") {
+      o.owner_fence = value();
+      if (o.owner_fence != "win-sync" && o.owner_fence != "cpu") {
+        usage_error("--owner-fence: unknown fence '" + o.owner_fence + "' (win-sync, cpu)");
+      }
     } else if (a == "--require-steals") {
       o.require_steals = true;
     } else if (a == "--calibrate") {
@@ -313,6 +321,9 @@ struct RankStats {
   double owner_ops = 0;         // claims (rma) / polls (request)
   double requests_served = 0;
   double owner_overhead_median_ns = 0;  // median of the recorded owner-path samples (robust to preemption)
+  double t4_wait_s = 0;                 // rma thief: time waiting at T4 for a victim's claim in flight
+  double t4_spins = 0;
+  double idle_s = 0;                    // time in the idle (stealing / requesting) loop, steals' work excluded
 };
 constexpr int kStatFields = sizeof(RankStats) / sizeof(double);
 
@@ -397,6 +408,8 @@ class Runner {
     hooks.defects = defects_;
     hooks.force_overlap = o_.force_overlap;
     std::uint32_t failed_rounds = 0;
+    const auto idle_start = Clock::now();
+    const double busy_before = stats_.busy_s;
     while (!active_.all_idle()) {  // A3
       bool got = false;
       for (int v : victims_) {
@@ -424,6 +437,7 @@ class Runner {
         std::this_thread::sleep_for(std::chrono::microseconds(1u << std::min<std::uint32_t>(failed_rounds - 4, 8)));
       }
     }
+    stats_.idle_s += std::chrono::duration<double>(Clock::now() - idle_start).count() - (stats_.busy_s - busy_before);
   }
 
   // ---- request: §7's request-based stealing with messages ----
@@ -431,6 +445,8 @@ class Runner {
     log.clear();
     drain_request(fr, list, log);
     active_.leave();  // A2
+    const auto idle_start = Clock::now();
+    const double busy_before = stats_.busy_s;
     int outstanding = -1;
     std::uint32_t empty_replies = 0;
     std::size_t next_victim = 0;
@@ -474,6 +490,7 @@ class Runner {
       drain_request(fr, std::move(share), log);
       active_.leave();  // A2 (the victim joined for us, A1, before it replied)
     }
+    stats_.idle_s += std::chrono::duration<double>(Clock::now() - idle_start).count() - (stats_.busy_s - busy_before);
     // Frame end: every rank arrives with no outstanding request; answer stragglers until all have arrived.
     MPI_Request barrier;
     fm::check_mpi(MPI_Ibarrier(MPI_COMM_WORLD, &barrier), "MPI_Ibarrier");
@@ -623,7 +640,7 @@ double median(std::vector<double> v) {
 bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int rank, int ranks,
                    fm::RmaWindow& win, SchedulerResult& result) {
   Runner runner(o, wl, rank, ranks, win);
-  fm::RmaOwner owner(win, rank);
+  fm::RmaOwner owner(win, rank, o.owner_fence == "win-sync");
   fm::RmaThief thief(win, runner.active());
   std::vector<std::uint32_t> counts(wl.n), total(rank == 0 ? wl.n : 0);
   fs::RangeList list = fs::block_allocation(wl.n, static_cast<fs::WorkerId>(ranks))[static_cast<std::size_t>(rank)];
@@ -701,6 +718,8 @@ bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int 
     ok = verdict == 1;
   }
   runner.stats().bytes += static_cast<double>(win.bytes_moved()) - bytes_before;
+  runner.stats().t4_wait_s = thief.t4_wait_s();
+  runner.stats().t4_spins = static_cast<double>(thief.t4_spins());
   result.ranks.resize(rank == 0 ? static_cast<std::size_t>(ranks) : 0);
   MPI_Gather(&runner.stats(), kStatFields, MPI_DOUBLE, rank == 0 ? result.ranks.data() : nullptr, kStatFields,
              MPI_DOUBLE, 0, MPI_COMM_WORLD);
@@ -881,7 +900,8 @@ int main(int argc, char** argv) {
                  << ", \"steal_latency_max_us\": " << 1e6 * s.steal_latency_max_s << ", \"bytes_moved\": "
                  << s.bytes << ", \"owner_overhead_ns_per_op\": "
                  << (s.owner_ops > 0 ? 1e9 * s.owner_overhead_s / s.owner_ops : 0.0)
-                 << ", \"owner_overhead_median_ns\": " << s.owner_overhead_median_ns << ", \"owner_ops\": "
+                 << ", \"owner_overhead_median_ns\": " << s.owner_overhead_median_ns << ", \"t4_wait_s\": "
+                 << s.t4_wait_s << ", \"t4_polls\": " << s.t4_spins << ", \"idle_s\": " << s.idle_s << ", \"owner_ops\": "
                  << s.owner_ops << ", \"requests_served\": " << s.requests_served << "}";
             }
             js << "]}" << (i + 1 < results.size() ? "," : "") << "\n";

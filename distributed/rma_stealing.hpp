@@ -65,11 +65,15 @@ class RmaActiveCount {
 // Owner: claims from the front of this rank's own list, in its own window memory.
 class RmaOwner {
  public:
-  RmaOwner(RmaWindow& w, int me) : w_(w), me_(me) {}
+  // win_sync_f1: F1 is MPI_Win_sync (G3, the standard's memory barrier) followed by a seq_cst fence; without
+  // it F1 is the seq_cst fence alone, which is all osc/sm's MPI_Win_sync does besides calling the progress
+  // engine — and with mpi_yield_when_idle that progress call yields the CPU on every claim (measured:
+  // milliseconds per claim beside busy processes). See README "Beyond one machine".
+  RmaOwner(RmaWindow& w, int me, bool win_sync_f1 = true) : w_(w), me_(me), win_sync_f1_(win_sync_f1) {}
 
   std::optional<ItemId> try_claim() {
     w_.local_u32(kTransient).store(1u, std::memory_order_relaxed);                    // O1
-    w_.sync();                                                                          // F1 (G3)
+    if (win_sync_f1_) w_.sync();                                                        // F1 (G3)
     std::atomic_thread_fence(std::memory_order_seq_cst);                               // F1 (CPU order)
     const std::uint32_t end = w_.local_u32(kEnd).load(std::memory_order_acquire);     // O2
     const std::uint32_t f = front_;
@@ -114,6 +118,7 @@ class RmaOwner {
  private:
   RmaWindow& w_;
   int me_;
+  bool win_sync_f1_;
   std::uint32_t front_ = 0;
   std::uint32_t entry_index_ = 0;
   WinEntry entry_{};
@@ -153,9 +158,12 @@ class RmaThief {
     w_.put_u32(victim, kEnd, mid_);                                                     // T3 + F2 (flush, G5)
     std::uint32_t front_after = mid_;
     if (!has(hooks.defects, Defect::kSkipFrontReread)) {
+      const auto wait_start = std::chrono::steady_clock::now();
       for (std::uint32_t spins = 0; w_.get_u32(victim, kTransient) != 0u; ++spins) {   // T4
         if (spins > 64) std::this_thread::yield();
+        ++t4_spins_;
       }
+      t4_wait_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
       front_after = w_.get_u32(victim, kFront);                                         // T5
     }
     w_.atomic_write_u32(victim, kLock, 0);                                              // L3
@@ -164,6 +172,9 @@ class RmaThief {
 
   const RangeList& share() const noexcept { return share_; }
   std::uint32_t skipped() const noexcept { return skipped_; }
+  // Diagnostics: time spent, and polls made, waiting at T4 for a victim's claim in flight.
+  double t4_wait_s() const noexcept { return t4_wait_s_; }
+  std::uint64_t t4_spins() const noexcept { return t4_spins_; }
 
  private:
   // Copies the victim's entries that overlap [mid, end) (before T3, as core's plan_share).
@@ -211,6 +222,8 @@ class RmaThief {
   std::uint32_t mid_ = 0;
   std::uint32_t end_ = 0;
   std::uint32_t skipped_ = 0;
+  double t4_wait_s_ = 0;
+  std::uint64_t t4_spins_ = 0;
 };
 
 }  // namespace frontsteal::mpi
