@@ -6,7 +6,7 @@
 // T1-T5, L1-L3, I1-I2, A1-A3, E4) in a comment on its line, in the order of stealing_protocol.hpp, so the two
 // files can be compared line by line. What each site becomes:
 //   O1  local atomic_ref store ListTransient := 1        O2  local atomic_ref load of End (acquire)
-//   F1  MPI_Win_sync + seq_cst fence (G3)                  O3  local store Front := f + 1 (release)
+//   F1  seq_cst fence (+ MPI_Win_sync: --owner-fence, G3)  O3  local store Front := f + 1 (release)
 //   O4  local store ListTransient := 0 (release)           T1, T2, T5  MPI_Get + MPI_Win_flush
 //   T3  MPI_Put End := mid + MPI_Win_flush                 F2  that flush: the Put is complete at the target (G5)
 //   T4  MPI_Get ListTransient + flush, repeated until 0    L1  MPI_Fetch_and_op(MPI_NO_OP); L2 MPI_Compare_and_swap;
@@ -27,10 +27,11 @@
 // I-T of active_workers.hpp); it reuses core's pure pieces (IdRange, RangeList, append_merging,
 // items_left_to_victim). The planted defects are the core's (Defect::kSkipFrontReread).
 //
-// PROGRESS. Owner: wait-free, one MPI call per claim (MPI_Win_sync, F1; with osc/sm a memory barrier).
+// PROGRESS. Owner: wait-free; no MPI call per claim by default (F1 a CPU fence), one with F1 = MPI_Win_sync.
 // Thief: blocks at T4 while the victim is between O1 and O4, as in core. One more dependency than in shared
 // memory: with an RMA transport that needs the target's help (Open MPI's osc/pt2pt over TCP) a Get completes
-// only when the target calls into MPI; the owner's per-claim MPI_Win_sync is then also its progress call.
+// only when the target calls into MPI: such a transport needs --owner-fence win-sync (a progress call per
+// claim) or an asynchronous progress thread; only osc/sm (one machine) is tested.
 #pragma once
 
 #include <algorithm>

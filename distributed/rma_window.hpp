@@ -23,9 +23,13 @@
 //       otherwise): public and private copies are one memory, so the owner may read and write its own part of
 //       the window with plain (here: std::atomic_ref) loads and stores, with no MPI call, and a completed
 //       Put is visible to the owner's loads, a local store to later Gets (§11.4, "eventually").
-//   G3  MPI_Win_sync on the owner orders its local stores and loads with respect to the public copy: the
-//       owner's F1 (between O1 and O2) and the publication of an installed list are MPI_Win_sync (§11.7 and
-//       the unified-model example 11.21 use it as the memory barrier).
+//   G3  MPI_Win_sync on the owner orders its local stores and loads with respect to the public copy (§11.7;
+//       the unified-model example 11.21 uses it as the memory barrier): the publication of an installed list
+//       always, and the owner's F1 (between O1 and O2) with --owner-fence win-sync. By DEFAULT F1 is a seq_cst
+//       CPU fence only (--owner-fence cpu), which is beyond the standard: Open MPI's osc/sm MPI_Win_sync is that
+//       same barrier plus a call into the progress engine, and with mpi_yield_when_idle (needed with more
+//       ranks than cores) that call yields the core on every claim — measured at milliseconds per claim
+//       beside two busy loops, against ~60 ns without them.
 //   G4  Accumulate operations (MPI_Compare_and_swap, MPI_Fetch_and_op, MPI_Accumulate) on the same location
 //       with the same basic datatype are atomic with respect to each other (§11.7.1): the lock, the
 //       termination count and the central counter rely on it.
