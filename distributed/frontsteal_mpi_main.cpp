@@ -776,7 +776,10 @@ int calibrate(int rank, int ranks, fm::RmaWindow& win) {
     fm::RmaOwner owner(win, 0);
     fs::RangeList big{{0, static_cast<fs::ItemId>(std::min<std::uint32_t>(win.capacity(), 1u << 20))}};
     owner.install(big);
-    time_op("RMA owner claim (O1-O4, local + Win_sync)", [&] { (void)owner.try_claim(); });
+    time_op("RMA owner claim, F1 = MPI_Win_sync + fence", [&] { (void)owner.try_claim(); });
+    fm::RmaOwner plain_owner(win, 0, false);
+    plain_owner.install(big);
+    time_op("RMA owner claim, F1 = fence only (default)", [&] { (void)plain_owner.try_claim(); });
     time_op("request owner poll (MPI_Iprobe, nothing pending)", [&] {
       int flag = 0;
       MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
