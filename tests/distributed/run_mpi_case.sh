@@ -26,6 +26,7 @@ took=$(awk -v a="$start" -v b="$(date +%s%N)" 'BEGIN { printf "%.1f", (b - a) / 
 echo "$out"
 echo "run_mpi_case.sh: exit status $rc after ${took} s"
 fail() { echo "run_mpi_case.sh: FAILED: $*"; exit 1; }
+[ $rc -eq 77 ] && { echo "run_mpi_case.sh: skipped (exit status 77)"; exit 77; }
 if [ "$want_rc" = nonzero ]; then
   [ $rc -ne 0 ] || fail "expected a non-zero exit status, got 0"
   [ $rc -ne 124 ] && [ $rc -ne 137 ] || fail "the command hung and was killed (status $rc)"
