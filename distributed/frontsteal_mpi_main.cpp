@@ -54,6 +54,7 @@
 #include "core/synthetic_work.hpp"
 #include "distributed/rma_stealing.hpp"
 #include "distributed/rma_window.hpp"
+#include "reporting/command_line.hpp"
 #include "tessellate/camera_path.hpp"
 #include "tessellate/scene_generator.hpp"
 #include "tessellate/surface_tessellator.hpp"
@@ -68,6 +69,7 @@
 namespace fs = frontsteal;
 namespace fm = frontsteal::mpi;
 namespace ts = frontsteal::tess;
+namespace report = frontsteal::report;
 
 namespace {
 
@@ -77,35 +79,15 @@ constexpr int kWatchdogExitCode = 86;  // as core/watchdog.hpp: distinct from a 
 constexpr int kTagRequest = 181;
 constexpr int kTagReply = 182;
 
-constexpr std::string_view kUsage = R"(usage: mpirun -np P frontsteal-mpi [options]
+constexpr const char* kDescription = R"(usage: mpirun -np P frontsteal-mpi [options]
 
 Runs the frame loop across MPI ranks under each scheduler (rma, request, central, static), audits every frame
 (each item executed exactly once, triangle count equal to a serial loop's) and prints a table per scheduler:
 frames/s, per-rank busy time, items, steals, mean steal latency, bytes moved, owner overhead per item.
 As root, Open MPI needs OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 in the environment; with more
-ranks than cores add --oversubscribe --mca mpi_yield_when_idle 1.
-
-  --scene S            synthetic:N | teapot | teacup | teaspoon | plant:N[:seed] | model file  (default synthetic:20000)
-  --frames F           frames along the camera path (default 30)
-  --schedulers L       comma list of rma,request,central,static (default all four)
-  --work-ns N          synthetic: cost of a light item in ~ns of busy work (default 2000)
-  --skew K             synthetic: the heavy fifth of the ids (a window that moves each frame) costs K x (default 20)
-  --tolerance T        tessellation pixel tolerance (default 1.0)
-  --json PATH          also write the results as JSON
-  --watchdog-s S       a rank that makes no progress for S s exits 86 (default 60; 0 = off)
-  --stall R:F:MS       rank R sleeps MS ms after its first item of frame F (fault test)
-  --die R:F            rank R exits abruptly (status 3) after its first item of frame F (fault test)
-  --plant-defect D     negative controls: none | skip-reread (rma thief skips T4/T5) |
-                       request-keeps-share (request owner sends a share and keeps it)
-  --force-overlap      rma thieves wait, before T3, until the victim has claimed into the planned share
-  --owner-fence F      the rma owner's F1: cpu (a seq_cst fence, no MPI call on the owner path; default) |
-                       win-sync (MPI_Win_sync + the fence: the standard's barrier, but a progress call per claim)
-  --require-steals     exit 1 unless rma and request each made at least one steal (tests: stealing was exercised)
-  --calibrate          measure get/put/CAS/fetch-and-op/flush latency and the owner's per-item costs, then exit
-  --quiet              no progress lines
-  --help               this text
-Exit status: 0 all audits passed; 1 an audit failed; 2 bad command line; 3 --die; 86 watchdog.
-)";
+ranks than cores add --oversubscribe --mca mpi_yield_when_idle 1.)";
+constexpr const char* kFooter = R"(
+Exit status: 0 all audits passed; 1 an audit failed; 2 bad command line; 3 --die; 86 watchdog.)";
 
 // Rank as the launcher tells it, before MPI_Init: only rank 0 prints usage errors.
 int launcher_rank() {
@@ -113,27 +95,6 @@ int launcher_rank() {
     if (const char* s = std::getenv(v)) return std::atoi(s);
   }
   return 0;
-}
-
-[[noreturn]] void usage_error(const std::string& message) {
-  if (launcher_rank() == 0) {
-    std::cerr << kProgram << ": " << message << "\n(run " << kProgram << " --help for the options)\n";
-  }
-  std::exit(2);
-}
-
-template <class T>
-T parse_number(std::string_view flag, std::string_view text, T lo, T hi) {
-  T v{};
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc{} || end != text.data() + text.size()) {
-    usage_error(std::string(flag) + " expects a number, got '" + std::string(text) + "'");
-  }
-  if (v < lo || v > hi) {
-    usage_error(std::string(flag) + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
-                ", got " + std::string(text));
-  }
-  return v;
 }
 
 std::vector<std::string> split(std::string_view s, char sep) {
@@ -145,6 +106,25 @@ std::vector<std::string> split(std::string_view s, char sep) {
     s.remove_prefix(p + 1);
   }
   return out;
+}
+
+// "A:B:C" of `parts` non-negative integers, each at most the matching bound.
+CLI::Validator integers_validator(std::vector<int> bounds, std::string shape) {
+  return CLI::Validator(
+      [bounds, shape](std::string& text) -> std::string {
+        const auto p = split(text, ':');
+        if (p.size() != bounds.size()) return "expects " + shape + ", got '" + text + "'";
+        for (std::size_t k = 0; k < p.size(); ++k) {
+          int v = -1;
+          const auto [end, ec] = std::from_chars(p[k].data(), p[k].data() + p[k].size(), v);
+          if (ec != std::errc{} || end != p[k].data() + p[k].size() || v < 0 || v > bounds[k]) {
+            return "expects " + shape + " (non-negative integers, at most " + std::to_string(bounds[k]) + " in place " +
+                   std::to_string(k + 1) + "), got '" + text + "'";
+          }
+        }
+        return {};
+      },
+      shape);
 }
 
 struct Options {
@@ -168,72 +148,57 @@ struct Options {
 
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view a = argv[i];
-    auto value = [&]() -> std::string_view {
-      if (i + 1 >= argc) usage_error(std::string(a) + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      if (launcher_rank() == 0) std::cout << kUsage;
-      std::exit(0);
-    } else if (a == "--scene") {
-      o.scene = value();
-      if (o.scene.empty()) usage_error("--scene needs a non-empty value");
-    } else if (a == "--frames") {
-      o.frames = parse_number<int>(a, value(), 1, 100000);
-    } else if (a == "--schedulers") {
-      o.schedulers = split(value(), ',');
-      for (const auto& s : o.schedulers) {
-        if (s != "rma" && s != "request" && s != "central" && s != "static") {
-          usage_error("--schedulers: unknown scheduler '" + s + "' (rma, request, central, static)");
-        }
-      }
-    } else if (a == "--work-ns") {
-      o.work_ns = parse_number<std::uint32_t>(a, value(), 0, 100000000);
-    } else if (a == "--skew") {
-      o.skew = parse_number<std::uint32_t>(a, value(), 1, 10000);
-    } else if (a == "--tolerance") {
-      const std::string v(value());
-      char* end = nullptr;
-      o.tolerance = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(o.tolerance > 0)) usage_error("--tolerance expects a positive number, got '" + v + "'");
-    } else if (a == "--json") {
-      o.json = value();
-    } else if (a == "--watchdog-s") {
-      o.watchdog_s = parse_number<int>(a, value(), 0, 86400);
-    } else if (a == "--stall") {
-      const auto p = split(value(), ':');
-      if (p.size() != 3) usage_error("--stall expects RANK:FRAME:MS, got '" + std::string(argv[i]) + "'");
-      o.stall_rank = parse_number<int>("--stall rank", p[0], 0, 1 << 20);
-      o.stall_frame = parse_number<int>("--stall frame", p[1], 0, 100000);
-      o.stall_ms = parse_number<int>("--stall ms", p[2], 0, 3600000);
-    } else if (a == "--die") {
-      const auto p = split(value(), ':');
-      if (p.size() != 2) usage_error("--die expects RANK:FRAME, got '" + std::string(argv[i]) + "'");
-      o.die_rank = parse_number<int>("--die rank", p[0], 0, 1 << 20);
-      o.die_frame = parse_number<int>("--die frame", p[1], 0, 100000);
-    } else if (a == "--plant-defect") {
-      o.defect = value();
-      if (o.defect != "none" && o.defect != "skip-reread" && o.defect != "request-keeps-share") {
-        usage_error("--plant-defect: unknown defect '" + o.defect + "' (none, skip-reread, request-keeps-share)");
-      }
-    } else if (a == "--force-overlap") {
-      o.force_overlap = true;
-    } else if (a == "--owner-fence") {
-      o.owner_fence = value();
-      if (o.owner_fence != "win-sync" && o.owner_fence != "cpu") {
-        usage_error("--owner-fence: unknown fence '" + o.owner_fence + "' (win-sync, cpu)");
-      }
-    } else if (a == "--require-steals") {
-      o.require_steals = true;
-    } else if (a == "--calibrate") {
-      o.calibrate = true;
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else {
-      usage_error("unknown option '" + std::string(a) + "'");
-    }
+  report::CommandLine cli(std::string(kProgram), kDescription, kFooter);
+  cli.set_speaks(launcher_rank() == 0);  // every rank parses; rank 0 alone prints
+  cli.option("--scene", o.scene, "synthetic:N | teapot | teacup | teaspoon | plant:N[:seed] | model file")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            if (v.empty()) return "needs a non-empty value";
+            if (v.rfind("synthetic:", 0) != 0) return {};
+            fs::ItemId n = 0;
+            const std::string_view t = std::string_view(v).substr(10);
+            const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), n);
+            if (ec != std::errc{} || end != t.data() + t.size() || n < 1 || n > 50000000) {
+              return "synthetic:N needs N between 1 and 50000000, got '" + v + "'";
+            }
+            return {};
+          },
+          ""));
+  cli.option("--frames", o.frames, "frames along the camera path")->check(CLI::Range(1, 100000));
+  cli.app().add_option("--schedulers", o.schedulers, "comma list of rma,request,central,static")
+      ->delimiter(',')->check(CLI::IsMember({"rma", "request", "central", "static"}));
+  cli.option("--work-ns", o.work_ns, "synthetic: cost of a light item in ~ns of busy work")->check(CLI::Range(0u, 100000000u));
+  cli.option("--skew", o.skew, "synthetic: the heavy fifth of the ids (a window that moves each frame) costs K x")
+      ->check(CLI::Range(1u, 10000u));
+  cli.option("--tolerance", o.tolerance, "tessellation pixel tolerance")->check(CLI::PositiveNumber);
+  cli.option("--json", o.json, "also write the results as JSON to this file");
+  cli.option("--watchdog-s", o.watchdog_s, "a rank that makes no progress for S s exits 86 (0 = off)")
+      ->check(CLI::Range(0.0, 86400.0));
+  std::string stall, die;
+  cli.option("--stall", stall, "R:F:MS: rank R sleeps MS ms after its first item of frame F (fault test)")
+      ->check(integers_validator({1 << 20, 100000, 3600000}, "RANK:FRAME:MS"));
+  cli.option("--die", die, "R:F: rank R exits abruptly (status 3) after its first item of frame F (fault test)")
+      ->check(integers_validator({1 << 20, 100000}, "RANK:FRAME"));
+  cli.option("--plant-defect", o.defect, "negative controls: none | skip-reread (rma thief skips T4/T5) | "
+             "request-keeps-share (request owner sends a share and keeps it)")
+      ->check(CLI::IsMember({"none", "skip-reread", "request-keeps-share"}));
+  cli.flag("--force-overlap", o.force_overlap, "rma thieves wait, before T3, until the victim has claimed into the planned share");
+  cli.option("--owner-fence", o.owner_fence, "the rma owner's F1: cpu (a seq_cst fence, no MPI call on the owner path) | "
+             "win-sync (MPI_Win_sync + the fence: the standard's barrier, but a progress call per claim)")
+      ->check(CLI::IsMember({"cpu", "win-sync"}));
+  cli.flag("--require-steals", o.require_steals, "exit 1 unless rma and request each made at least one steal (tests: "
+           "stealing was exercised)");
+  cli.flag("--calibrate", o.calibrate, "measure get/put/CAS/fetch-and-op/flush latency and the owner's per-item "
+           "costs, then exit");
+  cli.quiet(o.quiet);
+  cli.parse(argc, argv);
+  if (!stall.empty()) {
+    const auto p = split(stall, ':');
+    o.stall_rank = std::stoi(p[0]), o.stall_frame = std::stoi(p[1]), o.stall_ms = std::stoi(p[2]);
+  }
+  if (!die.empty()) {
+    const auto p = split(die, ':');
+    o.die_rank = std::stoi(p[0]), o.die_frame = std::stoi(p[1]);
   }
   return o;
 }
@@ -268,7 +233,7 @@ std::uint32_t synthetic_triangles(int frame, fs::ItemId id) {
 void build_workload(const Options& o, int rank, Workload& wl) {
   if (o.scene.rfind("synthetic:", 0) == 0) {
     wl.kind = "synthetic";
-    wl.n = parse_number<fs::ItemId>("--scene synthetic:N", std::string_view(o.scene).substr(10), 1, 50000000);
+    wl.n = static_cast<fs::ItemId>(std::stoul(o.scene.substr(10)));  // checked by parse()
     const fs::ItemId n = wl.n;
     const std::uint32_t light = o.work_ns, heavy_cost = o.work_ns * o.skew;
     wl.run = [n, light, heavy_cost](int f, fs::ItemId id) {
