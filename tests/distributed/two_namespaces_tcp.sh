@@ -11,7 +11,7 @@ mpiexec=$1; prog=$2; shift 2
 tag=fs$$
 a=${tag}a; b=${tag}b
 net=10.218.$(( $$ % 250 + 1 ))
-agent=$(mktemp /tmp/${tag}-agent.XXXXXX)
+agent=$(mktemp -t ${tag}-agent.XXXXXX)
 cleanup() {
   ip netns del "$a" 2> /dev/null
   ip netns del "$b" 2> /dev/null  # deleting a namespace removes its end of the veth pair, and so the pair
