@@ -3,8 +3,12 @@
 
 #include "schedulers/interference.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <charconv>
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -71,7 +75,29 @@ ProcSample sample_now(pid_t known) {
   const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
   ProcSample s = parse_sample(read_file("/proc/stat"), read_file("/proc/self/stat"), read_file("/proc/loadavg"), now);
   if (known > 0) s.known_ticks = interference::process_ticks(known);
+  s.children_ticks = children_ticks(::getpid(), known);
   return s;
+}
+
+std::uint64_t children_ticks(pid_t parent, pid_t except) {
+  std::uint64_t sum = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc", ec)) {
+    const std::string name = entry.path().filename().string();
+    pid_t pid = 0;
+    const auto [end, err] = std::from_chars(name.data(), name.data() + name.size(), pid);
+    if (err != std::errc() || end != name.data() + name.size() || pid == except) continue;
+    const std::string stat = read_file(("/proc/" + name + "/stat").c_str());
+    // "pid (comm) state ppid …": the parent is the second field after the last ')'.
+    const auto close = stat.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream in(stat.substr(close + 1));
+    std::string state;
+    long ppid = 0;
+    if (!(in >> state >> ppid) || ppid != parent) continue;
+    sum += interference::parse_process_ticks(stat).value_or(0);  // gone meanwhile: 0
+  }
+  return sum;
 }
 
 Usage& Usage::operator+=(const Usage& o) {
@@ -80,6 +106,7 @@ Usage& Usage::operator+=(const Usage& o) {
   steal_ticks += o.steal_ticks;
   self_ticks += o.self_ticks;
   known_ticks += o.known_ticks;
+  children_ticks += o.children_ticks;
   wall_s += o.wall_s;
   windows += o.windows;
   ok = ok && o.ok;
@@ -87,7 +114,7 @@ Usage& Usage::operator+=(const Usage& o) {
 }
 
 std::uint64_t Usage::other_ticks() const {
-  const std::uint64_t ours = self_ticks + known_ticks;
+  const std::uint64_t ours = self_ticks + known_ticks + children_ticks;
   return busy_ticks > ours ? busy_ticks - ours : 0;
 }
 double Usage::known_share() const {
@@ -113,6 +140,7 @@ Usage usage_between(const ProcSample& a, const ProcSample& b) {
   u.steal_ticks = delta(a.steal_ticks, b.steal_ticks);
   u.self_ticks = delta(a.self_ticks, b.self_ticks);
   u.known_ticks = delta(a.known_ticks, b.known_ticks);  // a co-runner reaped in the window counts 0, not less
+  u.children_ticks = delta(a.children_ticks, b.children_ticks);  // likewise a child that exited
   return u;
 }
 

@@ -15,6 +15,13 @@
 // not "other processes": sample_now(pid) also reads its utime + stime from /proc/<pid>/stat (known_ticks),
 // and other_ticks() leaves them out, so the co-runner is reported on its own (known_share) while any
 // genuinely external load is still flagged.
+// Our other child processes (the openmp-static-steal child of llvm_openmp_child.hpp, which loads the scene
+// while we do and runs its own rows; gnuplot) are ours too: sample_now() adds up the utime + stime of every
+// live process whose parent is this process (a scan of /proc/<pid>/stat; children_ticks), so a run is not
+// called busy because of work it started itself. (Before this, the static-steal child's scene loading made
+// the "before" window read ~20 % "other processes" on every default run, quiet machine or not.) A child that
+// exits inside a window takes its ticks out of the sum; the delta is then clamped to 0, so that window
+// counts the child's last ticks as other (errs towards "busy", never towards "quiet").
 //
 // The decision (assess, spread_of) is pure, over parsed samples, so tests drive it with synthetic
 // /proc text for both a quiet and a loaded machine; sample_now() is the only part that reads files.
@@ -36,6 +43,7 @@ struct ProcSample {
   std::uint64_t steal_ticks = 0;
   std::uint64_t self_ticks = 0;    // this process: utime + stime
   std::uint64_t known_ticks = 0;   // the known co-runner's utime + stime (0 when none, or gone)
+  std::uint64_t children_ticks = 0;  // our other live child processes' utime + stime
   double load1 = 0;                // 1-minute load average
   double wall_s = 0;               // steady clock when sampled
 };
@@ -43,17 +51,21 @@ struct ProcSample {
 // Parses the text of /proc/stat, /proc/self/stat and /proc/loadavg; ok = false if any is malformed.
 ProcSample parse_sample(std::string_view proc_stat, std::string_view self_stat, std::string_view loadavg,
                         double wall_s);
-// Reads the three files now, and /proc/<known>/stat when known > 0 (the co-runner; see above).
+// Reads the three files now, /proc/<known>/stat when known > 0 (the co-runner; see above), and the stat
+// files of our other live children.
 ProcSample sample_now(pid_t known = 0);
+// utime + stime of every live process whose parent is `parent`, except `except` (a scan of /proc).
+std::uint64_t children_ticks(pid_t parent, pid_t except);
 
 // What happened between two samples; windows add up (a verdict depends on many short windows).
 struct Usage {
   std::uint64_t total_ticks = 0, busy_ticks = 0, steal_ticks = 0, self_ticks = 0, known_ticks = 0;
+  std::uint64_t children_ticks = 0;
   double wall_s = 0;
   int windows = 0;
   bool ok = true;
   Usage& operator+=(const Usage& o);
-  std::uint64_t other_ticks() const;  // busy − self − known, never negative (the counters round differently)
+  std::uint64_t other_ticks() const;  // busy − self − known − children, never negative (the counters round differently)
   double known_share() const;         // the known co-runner's, of all ticks in the window(s)
   double other_share() const;         // of all ticks in the window(s)
   double steal_share() const;

@@ -4,6 +4,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
 #include <string>
 
 namespace nz = frontsteal::noise;
@@ -97,4 +101,58 @@ TEST_CASE("the real files parse on this machine", "[noise]") {
   REQUIRE(s.ok);
   CHECK(s.total_ticks > 0);
   CHECK(s.self_ticks < s.total_ticks);
+}
+
+namespace {
+// Forks a child that burns `cpu_ms` of its own CPU time (CLOCK_PROCESS_CPUTIME_ID: however loaded the machine,
+// it stops only once it has had that much CPU), then waits for the parent's go-ahead byte before exiting.
+struct BurningChild {
+  pid_t pid = -1;
+  int release[2] = {-1, -1};
+  int done[2] = {-1, -1};
+  explicit BurningChild(long cpu_ms) {
+    REQUIRE(::pipe(release) == 0);
+    REQUIRE(::pipe(done) == 0);
+    pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+      timespec t{};
+      volatile unsigned long sink = 0;
+      do {
+        for (int i = 0; i < 100000; ++i) sink = sink + static_cast<unsigned long>(i);
+        ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+      } while (t.tv_sec * 1000L + t.tv_nsec / 1000000L < cpu_ms);
+      char c = 1;
+      (void)!::write(done[1], &c, 1);
+      (void)!::read(release[0], &c, 1);
+      ::_exit(0);
+    }
+  }
+  void wait_burnt() {
+    char c;
+    REQUIRE(::read(done[0], &c, 1) == 1);
+  }
+  ~BurningChild() {
+    char c = 1;
+    (void)!::write(release[1], &c, 1);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    for (int fd : {release[0], release[1], done[0], done[1]}) ::close(fd);
+  }
+};
+}  // namespace
+
+TEST_CASE("our own child processes' CPU time is ours, not another process's", "[noise]") {
+  const nz::ProcSample before = nz::sample_now();
+  BurningChild child(300);
+  child.wait_burnt();
+  const nz::ProcSample after = nz::sample_now();
+  const nz::Usage u = nz::usage_between(before, after);
+  // The child burnt >= 300 ms = 30 ticks at 100 Hz; it is alive, so the scan finds all of it.
+  const long per_s = ::sysconf(_SC_CLK_TCK);
+  CHECK(u.children_ticks >= static_cast<std::uint64_t>(per_s * 3 / 10) - 1);
+  // (Before the scan existed, children_ticks was 0 and those ticks were 'other': the check above failed.)
+  // Excluding a pid leaves it out (the co-runner is counted as known_ticks instead).
+  CHECK(nz::children_ticks(::getpid(), child.pid) + static_cast<std::uint64_t>(per_s * 3 / 10) - 1 <=
+        nz::children_ticks(::getpid(), 0));
 }
