@@ -2,26 +2,20 @@
 // (core/component_publication.hpp) with Relacy: verdicts of the sound policy and of two planted defects on every
 // publication scenario, and the kill matrix of every one-step weakening of the sound policy's orders.
 //
-// This file never includes Relacy (publication_suite.cpp does).
-#include <chrono>
-#include <filesystem>
-#include <fstream>
+// The report's frame (results directory, JSON header, closing line) is checker_report.hpp's, the shared options
+// checker_options.hpp's. This file never includes Relacy (publication_suite.cpp does).
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/publication_policies.hpp"
-#include "models_check/report_text.hpp"
+#include "models_check/checker_options.hpp"
+#include "models_check/checker_report.hpp"
 #include "models_check/publication_check.hpp"
+#include "models_check/report_text.hpp"
 #include "models_check/table_policy.hpp"
-#include "reporting/command_line.hpp"
-#include "reporting/results_dir.hpp"
 #include "reporting/table.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 using namespace frontsteal;
 using namespace frontsteal::model;
@@ -44,36 +38,22 @@ models_check/relacy_backend.hpp); within that and their context bound they are c
 the executions explored to completion per cell. Relacy keeps a few stores per atomic and never produces load
 buffering; the random search is a sample. A pass is a complete bounded search, not a proof.)";
 
-struct Options {
-  std::uint64_t iterations = 100000;
-  std::uint64_t mutant_iterations = 20000;
-  unsigned bound = 3;
-  bool full = false;
+struct Options : SearchBudget {
   unsigned mutant_bound = 1;
-  std::uint64_t cap = 10'000'000;
-  bool mutants = true;
-  std::string out = "out/modelcheck-publication";
-  bool quiet = false;
 };
 
 Options parse(int argc, char** argv) {
   Options o;
-  report::CommandLine cli(kProgram, kDescription, kFooter);
-  const auto count = CLI::Range(std::uint64_t{1}, std::uint64_t{1'000'000'000});
-  cli.option("--iterations", o.iterations, "random-search iterations per policy and scenario")->check(count);
-  cli.option("--mutant-iterations", o.mutant_iterations, "random-search iterations per mutant and scenario")->check(count);
-  cli.option("--bound", o.bound, "also a context-bound search with this bound, 0: none")->check(CLI::Range(0u, 4u));
-  cli.flag("--full", o.full, "also the full search (every interleaving within the spin bound)");
-  cli.option("--mutant-bound", o.mutant_bound, "context-bound search for each mutant after its random search, 0: none")
+  o.bound = 3;
+  o.cap = 10'000'000;
+  o.out = "out/modelcheck-publication";
+  CheckerCommandLine cli(kProgram, kDescription, kFooter, o, "also a context-bound search with this bound, 0: none");
+  cli.full("also the full search (every interleaving within the spin bound)");
+  cli.cli().option("--mutant-bound", o.mutant_bound, "context-bound search for each mutant after its random search, 0: none")
       ->check(CLI::Range(0u, 4u));
-  cli.option("--cap", o.cap, "safety net: a tree search that explores more executions than this is reported as "
-             "capped, and a capped search fails the run")->check(count);
-  bool no_mutants = false;
-  cli.flag("--no-mutants", no_mutants, "skip the kill matrix");
-  cli.out(o.out);
-  cli.quiet(o.quiet);
+  cli.cap("safety net: a tree search that explores more executions than this is reported as capped, and a capped "
+          "search fails the run");
   cli.parse(argc, argv);
-  o.mutants = !no_mutants;
   return o;
 }
 
@@ -153,13 +133,13 @@ report::Table verdict_table(const Options& o, bool& ok, std::vector<SearchCell>&
   report::Table t({{"policy", "policy", false}, {"expected_pass", "expected", false}, {"verdict", "verdict", false},
                    {"executions", "executions explored (random + tree, discarded included)"}});
   for (const Row& row : rows) {
-    if (!o.quiet) std::cerr << kProgram << ": " << row.table.name << " …\n";
+    progress(kProgram, o.quiet, row.table.name + " …");
     const Outcome out = check_table(row.table, o.iterations, o.bound, o.full, o.cap, o.out + "/histories");
     if (row.must_pass) sound_cells = out.cells;
     const bool as_expected = out.scenario.empty() == row.must_pass;
     ok = ok && as_expected;
     if (!o.quiet) std::cerr << "  " << describe(out) << (as_expected ? "" : "  UNEXPECTED") << "\n";
-    t.add_row({row.table.name, report::Cell::shown_as(row.must_pass ? "pass" : "fail (negative control)", row.must_pass),
+    t.add_row({row.table.name, expectation_cell(row.must_pass),
                report::Cell::shown_as(describe(out) + (as_expected ? "" : " **UNEXPECTED**"), describe(out)),
                out.executions});
   }
@@ -182,16 +162,15 @@ report::Table search_table(const std::vector<SearchCell>& cells) {
 }
 
 report::Table kill_table(const Options& o, bool& ok) {
-  report::Table t({{"site", "site", false}, {"from", "order", false}, {"to", "weakened to", false},
-                   {"by", "killed by", false}, {"executions", "executions"}});
+  report::Table t(weakening_columns({{"by", "killed by", false}, {"executions", "executions"}}));
   const auto mutants = one_step_mutants(table_of<PublicationOrders>(), Protocol::kPublication);
   for (std::size_t k = 0; k < mutants.size(); ++k) {
     const Mutant& m = mutants[k];
-    if (!o.quiet) std::cerr << kProgram << ": mutant " << (k + 1) << "/" << mutants.size() << " " << m.table.name << "\n";
+    mutant_progress(kProgram, o.quiet, k, mutants.size(), m.table.name);
     const Outcome out = check_table(m.table, o.mutant_iterations, o.mutant_bound, false, o.cap, "");
     const bool killed = !out.scenario.empty();
     ok = ok && killed;
-    t.add_row({std::string(info(m.site).label) + " " + std::string(info(m.site).name), m.from, m.to,
+    t.add_row({site_text(m.site), m.from, m.to,
                report::Cell::shown_as(killed ? describe(out) : "**survived**", killed ? report::Json(describe(out)) : nullptr),
                out.executions});
   }
@@ -202,10 +181,8 @@ report::Table kill_table(const Options& o, bool& ok) {
 
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  try {
-    const report::ResultsDir dir(kProgram, o.out);
-    std::filesystem::create_directories(dir.file("histories"));
-    const auto start = std::chrono::steady_clock::now();
+  return run_checker(kProgram, [&] {
+    CheckerReport results(kProgram, o.out, /*histories=*/true);
     bool ok = true;
     std::ostringstream md;
     md << "# Publication and reclamation: Relacy verdicts (measured)\n\n"
@@ -221,10 +198,9 @@ int main(int argc, char** argv) {
     const report::Table searches = search_table(sound_cells);
     md << "\n## Verdicts\n\n" << verdicts.markdown()
        << "\n## Every search of Publication (executions explored to completion, time)\n\n" << searches.markdown();
-    report::Json js = report::document(kProgram, 2, "model-checked (bounded search)", FRONTSTEAL_GIT_COMMIT);
-    js["verdicts"] = verdicts.json();
-    js["searches"] = searches.json();
-    js["mutants"] = report::Json::array();
+    results.json["verdicts"] = verdicts.json();
+    results.json["searches"] = searches.json();
+    results.json["mutants"] = report::Json::array();
     if (o.mutants) {
       const report::Table kills = kill_table(o, ok);
       md << "\n## Kill matrix: every one-step weakening of Publication (all must be killed)\n\n"
@@ -232,20 +208,9 @@ int main(int argc, char** argv) {
          << (o.mutant_bound > 0 ? "the complete context-bound search (bound " + std::to_string(o.mutant_bound) + ")"
                                 : std::string("no tree search"))
          << " per scenario, up to the first failure.\n\n" << kills.markdown();
-      js["mutants"] = kills.json();
+      results.json["mutants"] = kills.json();
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    js["all_as_expected"] = ok;
-    js["seconds"] = seconds;
-    md << "\n" << (ok ? "Every verdict as expected." : "**Some verdicts were not as expected.**") << " Run time "
-       << static_cast<int>(seconds) << " s. Failing executions' histories: histories/.\n";
-    dir.write("publication.md", md.str());
-    dir.write_json("publication.json", js);
-    std::cout << md.str();
-    if (!o.quiet) std::cerr << kProgram << ": wrote " << o.out << "/publication.{md,json}\n";
-    return ok ? 0 : 1;
-  } catch (const std::exception& e) {
-    std::cerr << kProgram << ": " << e.what() << "\n";
-    return 1;
-  }
+    results.markdown = md.str();
+    return results.close("publication", ok, o.quiet);
+  });
 }
