@@ -1,0 +1,78 @@
+// owner_progress.hpp — the busy rma owner's cheap call into MPI, so that one-sided operations aimed at it
+// complete on transports without asynchronous progress.
+//
+// WHY. Passive-target RMA needs the target's help on some transports. Open MPI 4.1 picks osc/sm when every
+// rank of the window shares one node's memory: a Get is then a load by the origin, nothing waits for the
+// target. Across nodes over TCP it picks osc/rdma (with btl/tcp's emulated RDMA) or osc/pt2pt (asked for with
+// --mca osc pt2pt): both carry each Get/Put/CAS as a message that the TARGET's progress engine must receive
+// and answer, and Open MPI runs that engine only inside MPI calls of the target (no asynchronous progress
+// thread for these components). A busy owner that claims with plain loads and stores (G2 of rma_window.hpp)
+// makes no MPI call until its list is exhausted: every steal aimed at it waits that long — so over TCP
+// stealing hardly happened. The standard allows this (MPI 3.1 §11.7.3, "progress": an RMA operation is
+// guaranteed to complete only when the target eventually calls into MPI).
+//
+// THE FIX. The owner calls MPI_Iprobe (on a tag nobody sends) between items, at most every `every_us`
+// microseconds (0: after every item). MPI_Iprobe drives Open MPI's progress engine (opal_progress), which
+// serves the queued RMA requests. Its cost is measured by --calibrate (row "owner progress call") and counted
+// in the owner's per-item overhead (progress_calls in the JSON). With osc/sm it is not needed: auto = off when
+// the window's ranks share one node (MPI_Comm_split_type MPI_COMM_TYPE_SHARED covers every rank) and no
+// --mca osc other than sm is set, else every item.
+//
+// A progress THREAD is not the honest alternative here: osc/pt2pt refuses MPI_THREAD_MULTIPLE in Open MPI
+// 4.1, and a thread spinning in MPI takes a core from the owner on a machine with fewer cores than ranks.
+#pragma once
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace frontsteal::mpi {
+
+inline constexpr int kTagProgressProbe = 183;  // never sent: the probe only drives progress
+
+class OwnerProgress {
+ public:
+  using Clock = std::chrono::steady_clock;
+  // every_us < 0: never; 0: every item; > 0: at most every every_us microseconds.
+  OwnerProgress(MPI_Comm comm, double every_us)
+      : comm_(comm), every_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::micro>(
+                         every_us < 0 ? 0 : every_us))),
+        enabled_(every_us >= 0) {}
+
+  // Between two items, with the time already read; returns whether it called into MPI.
+  bool maybe_call(Clock::time_point now) {
+    if (!enabled_ || now < next_) return false;
+    call();
+    next_ = now + every_;
+    return true;
+  }
+  void call() {
+    int flag = 0;
+    MPI_Iprobe(MPI_ANY_SOURCE, kTagProgressProbe, comm_, &flag, MPI_STATUS_IGNORE);
+    ++calls_;
+  }
+  std::uint64_t calls() const noexcept { return calls_; }
+  bool enabled() const noexcept { return enabled_; }
+
+ private:
+  MPI_Comm comm_;
+  Clock::duration every_;
+  bool enabled_;
+  Clock::time_point next_{};
+  std::uint64_t calls_ = 0;
+};
+
+// What the run uses: the --owner-progress value resolved ("auto" by the rule above), and a line saying which
+// osc component was asked for (Open MPI: OMPI_MCA_osc, which mpirun's --mca osc sets) and whether every rank
+// shares one node. Collective over comm.
+struct ProgressChoice {
+  double every_us = -1;      // < 0: off
+  bool one_node = false;
+  std::string osc_requested; // "" when the launcher did not say
+  std::string describe() const;
+};
+ProgressChoice resolve_owner_progress(const std::string& option, MPI_Comm comm);
+
+}  // namespace frontsteal::mpi
