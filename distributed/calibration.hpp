@@ -2,14 +2,15 @@
 // from rank 0 to rank 1 and the owner's per-item costs (claim, progress call, request poll), as medians with
 // 95 % bootstrap intervals; the inputs of the distributed simulator (rma_simulator.hpp).
 //
-// WHY IT HUNG OVER TCP, AND WHAT IT DOES NOW. Rank 1 used to wait in MPI_Barrier while rank 0 timed its
-// operations. Over TCP (osc/pt2pt or osc/rdma on btl/tcp) every operation needs rank 1's progress engine
-// (owner_progress.hpp), and a rank blocked in a barrier runs it only as often as the barrier's own wait loop
-// polls — and the TCP events, on Open MPI's libevent path, only every few polls: the operations crawled.
-// Now rank 1 spins on MPI_Iprobe until rank 0 sends "done" (an attentive target: the figures are the
-// transport's, not a busy owner's), every operation runs for at most --calibrate-op-s seconds (so a slow
+// OVER TCP. The first cut's target waited in MPI_Barrier while rank 0 timed its operations; over osc/pt2pt
+// every operation needs the target's progress engine (owner_progress.hpp). The reported hang did not reproduce
+// (that version completed over TCP in 3.8 s: a barrier's wait loop runs opal_progress too), but nothing bounded
+// it either. Now rank 1 spins on MPI_Iprobe until rank 0 sends "done" (an attentive target: the figures are
+// the transport's, not a busy owner's), every operation runs for at most --calibrate-op-s seconds (a slow
 // transport gives fewer repetitions, not a longer run), and the watchdog (rank_watchdog.hpp) names the
-// operation and exits 86 if a single one never completes.
+// operation and exits 86 if a single one never completes. The 95 % interval is that of an evenly strided
+// subsample's median (at most 500 values), so with 20,000 tightly clustered samples the full median may sit
+// a few ns outside it.
 #pragma once
 
 #include <string>
