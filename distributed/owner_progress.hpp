@@ -17,7 +17,7 @@
 // --mca osc other than sm is set, else every item.
 // WHAT IT DID NOT DO (measured, README "Two hosts"): over osc/pt2pt a thief's first operation on a busy victim
 // still completed only once the victim had run out of work, so stealing over TCP is not demonstrated; and
-// osc/pt2pt sometimes never completes an MPI_Win_flush. The remedy is a transport with hardware or
+// the central counter's MPI_Fetch_and_op never completed in any all-scheduler run over osc/pt2pt. The remedy is a transport with hardware or
 // asynchronous progress (osc/ucx on RDMA, MPICH with MPIR_CVAR_ASYNC_PROGRESS=1), not more calls here.
 //
 // A progress THREAD is not an option with this build: osc/pt2pt refuses MPI_THREAD_MULTIPLE in Open MPI 4.1,
