@@ -29,9 +29,9 @@
 //
 // PROGRESS. Owner: wait-free; no MPI call per claim by default (F1 a CPU fence), one with F1 = MPI_Win_sync.
 // Thief: blocks at T4 while the victim is between O1 and O4, as in core. One more dependency than in shared
-// memory: with an RMA transport that needs the target's help (Open MPI's osc/pt2pt over TCP) a Get completes
-// only when the target calls into MPI: such a transport needs --owner-fence win-sync (a progress call per
-// claim) or an asynchronous progress thread; only osc/sm (one machine) is tested.
+// memory: with an RMA transport that needs the target's help (Open MPI over TCP: osc/pt2pt, osc/rdma on
+// btl/tcp) every thief operation completes only when the victim calls into MPI; the frame runner's busy owner
+// then makes a progress call between items (owner_progress.hpp, --owner-progress), which is outside O1..O4.
 #pragma once
 
 #include <algorithm>
@@ -53,11 +53,11 @@ namespace frontsteal::mpi {
 class RmaActiveCount {
  public:
   explicit RmaActiveCount(RmaWindow& w) : w_(w) {}
-  void join() { w_.fetch_add_i32(0, kActive, 1); }                    // A1
-  void leave() { w_.fetch_add_i32(0, kActive, -1); }                  // A2
-  bool all_idle() { return w_.atomic_read_i32(0, kActive) == 0; }     // A3
-  std::int32_t value() { return w_.atomic_read_i32(0, kActive); }
-  void rearm(std::int32_t ranks) { w_.atomic_write_i32(0, kActive, ranks); }  // E4 (rank 0, between frames)
+  void join() { w_.fetch_and_op(0, kActive, 1, MPI_SUM); }                    // A1
+  void leave() { w_.fetch_and_op(0, kActive, -1, MPI_SUM); }                  // A2
+  bool all_idle() { return w_.atomic_read(0, kActive) == 0; }     // A3
+  std::int32_t value() { return w_.atomic_read(0, kActive); }
+  void rearm(std::int32_t ranks) { w_.accumulate_replace(0, kActive, ranks); }  // E4 (rank 0, between frames)
 
  private:
   RmaWindow& w_;
@@ -73,17 +73,17 @@ class RmaOwner {
   RmaOwner(RmaWindow& w, int me, bool win_sync_f1 = true) : w_(w), me_(me), win_sync_f1_(win_sync_f1) {}
 
   std::optional<ItemId> try_claim() {
-    w_.local_u32(kTransient).store(1u, std::memory_order_relaxed);                    // O1
+    w_.local(kTransient).store(1u, std::memory_order_relaxed);                    // O1
     if (win_sync_f1_) w_.sync();                                                        // F1 (G3)
     std::atomic_thread_fence(std::memory_order_seq_cst);                               // F1 (CPU order)
-    const std::uint32_t end = w_.local_u32(kEnd).load(std::memory_order_acquire);     // O2
+    const std::uint32_t end = w_.local(kEnd).load(std::memory_order_acquire);     // O2
     const std::uint32_t f = front_;
     if (f >= end) {
-      w_.local_u32(kTransient).store(0u, std::memory_order_release);                  // O4
+      w_.local(kTransient).store(0u, std::memory_order_release);                  // O4
       return std::nullopt;
     }
-    w_.local_u32(kFront).store(f + 1, std::memory_order_release);                     // O3
-    w_.local_u32(kTransient).store(0u, std::memory_order_release);                    // O4
+    w_.local(kFront).store(f + 1, std::memory_order_release);                     // O3
+    w_.local(kTransient).store(0u, std::memory_order_release);                    // O4
     front_ = f + 1;
     const WinEntry* entries = w_.local_entries();
     while (f >= entry_.flat_end()) entry_ = entries[++entry_index_];
@@ -93,7 +93,7 @@ class RmaOwner {
   // Installs `list` into this rank's slot under its own LockList (taken with MPI_Compare_and_swap on itself:
   // the lock word is accumulate-only, G4). Only when the current list is exhausted, or between frames.
   void install(const RangeList& list, std::uint32_t spin_pause_us = 0) {
-    for (std::uint32_t spins = 0; w_.cas_u32(me_, kLock, 0, 1) != 0u; ++spins) {  // L2 (owner, idle)
+    for (std::uint32_t spins = 0; w_.compare_and_swap(me_, kLock, 0u, 1u) != 0u; ++spins) {  // L2 (owner, idle)
       if (spins > 64) std::this_thread::sleep_for(std::chrono::microseconds(spin_pause_us + 1));
     }
     WinEntry* entries = w_.local_entries();
@@ -104,11 +104,11 @@ class RmaOwner {
       entries[n++] = WinEntry{r.begin, r.end, flat};
       flat += r.size();
     }
-    w_.local_u32(kEntryCount).store(n, std::memory_order_relaxed);
-    w_.local_u32(kFront).store(0u, std::memory_order_relaxed);                         // I1
-    w_.local_u32(kEnd).store(flat, std::memory_order_release);                         // I2
+    w_.local(kEntryCount).store(n, std::memory_order_relaxed);
+    w_.local(kFront).store(0u, std::memory_order_relaxed);                         // I1
+    w_.local(kEnd).store(flat, std::memory_order_release);                         // I2
     w_.sync();                                                                          // publish (G3)
-    w_.atomic_write_u32(me_, kLock, 0);                                                 // L3
+    w_.accumulate_replace(me_, kLock, 0u);                                                 // L3
     front_ = 0;
     entry_index_ = 0;
     entry_ = n > 0 ? entries[0] : WinEntry{};
@@ -143,12 +143,12 @@ class RmaThief {
   RmaThief(RmaWindow& w, RmaActiveCount& active) : w_(w), active_(active), staging_(w.capacity()) {}
 
   RmaStealOutcome try_steal(int victim, const RmaStealHooks& hooks = {}) {
-    if (w_.atomic_read_u32(victim, kLock) != 0u) return RmaStealOutcome::kLockBusy;   // L1
-    if (w_.cas_u32(victim, kLock, 0, 1) != 0u) return RmaStealOutcome::kLockBusy;     // L2
-    const std::uint32_t front = w_.get_u32(victim, kFront);                             // T1
-    const std::uint32_t end = w_.get_u32(victim, kEnd);                                 // T2
+    if (w_.atomic_read(victim, kLock) != 0u) return RmaStealOutcome::kLockBusy;   // L1
+    if (w_.compare_and_swap(victim, kLock, 0u, 1u) != 0u) return RmaStealOutcome::kLockBusy;     // L2
+    const std::uint32_t front = w_.get(victim, kFront);                             // T1
+    const std::uint32_t end = w_.get(victim, kEnd);                                 // T2
     if (front >= end) {
-      w_.atomic_write_u32(victim, kLock, 0);                                            // L3
+      w_.accumulate_replace(victim, kLock, 0u);                                            // L3
       return RmaStealOutcome::kEmpty;
     }
     mid_ = front + static_cast<std::uint32_t>(items_left_to_victim(end - front));
@@ -156,18 +156,18 @@ class RmaThief {
     copy_share(victim);
     if (hooks.force_overlap) await_victim_past_mid(victim, hooks.overlap_timeout);
     active_.join();                                                                     // A1 (before T3: I-T)
-    w_.put_u32(victim, kEnd, mid_);                                                     // T3 + F2 (flush, G5)
+    w_.put(victim, kEnd, mid_);                                                     // T3 + F2 (flush, G5)
     std::uint32_t front_after = mid_;
     if (!has(hooks.defects, Defect::kSkipFrontReread)) {
       const auto wait_start = std::chrono::steady_clock::now();
-      for (std::uint32_t spins = 0; w_.get_u32(victim, kTransient) != 0u; ++spins) {   // T4
+      for (std::uint32_t spins = 0; w_.get(victim, kTransient) != 0u; ++spins) {   // T4
         if (spins > 64) std::this_thread::yield();
         ++t4_spins_;
       }
       t4_wait_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
-      front_after = w_.get_u32(victim, kFront);                                         // T5
+      front_after = w_.get(victim, kFront);                                         // T5
     }
-    w_.atomic_write_u32(victim, kLock, 0);                                              // L3
+    w_.accumulate_replace(victim, kLock, 0u);                                              // L3
     return keep_unclaimed(front_after);
   }
 
@@ -181,7 +181,7 @@ class RmaThief {
   // Copies the victim's entries that overlap [mid, end) (before T3, as core's plan_share).
   void copy_share(int victim) {
     share_.clear();
-    const std::uint32_t n = w_.get_u32(victim, kEntryCount);
+    const std::uint32_t n = w_.get(victim, kEntryCount);
     // Binary search over remote entries would cost log n round trips; one Get of the whole body costs one
     // (entries are 12 bytes; lists are short because they are merged ranges).
     w_.get_entries(victim, 0, n, staging_.data());
@@ -197,7 +197,7 @@ class RmaThief {
 
   void await_victim_past_mid(int victim, std::chrono::milliseconds timeout) {
     const auto until = std::chrono::steady_clock::now() + timeout;
-    while (w_.get_u32(victim, kFront) <= mid_ && std::chrono::steady_clock::now() < until) {
+    while (w_.get(victim, kFront) <= mid_ && std::chrono::steady_clock::now() < until) {
       std::this_thread::sleep_for(std::chrono::microseconds(50));
     }
   }

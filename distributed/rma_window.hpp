@@ -36,6 +36,9 @@
 //   G5  MPI_Win_flush completes an operation AT THE TARGET (§11.5.4): after T3's Put and its flush, the new
 //       End is in the victim's memory before the thief issues T4's Get. With G3 on the owner this is the
 //       store-buffering (Dekker) handshake of stealing_protocol.hpp with F1 = MPI_Win_sync, F2 = the flush.
+// ONE ACCESSOR PER OPERATION. Each field is a WinField<T> (its type and byte displacement); every one-sided
+// operation is one template over the field (get, put, compare_and_swap, fetch_and_op, accumulate_replace),
+// so the datatype, the flush and the byte count are written once, not once per field and type.
 // BEYOND THE STANDARD (stated, not hidden): MPI 3.1 calls a Get or Put concurrent with a local store to the
 // same bytes "conflicting" and leaves the outcome undefined; we rely on an aligned 4-byte word being read and
 // written whole (true of Open MPI's osc/sm and osc/rdma over shared memory, where a Get is a copy from mapped
@@ -57,13 +60,29 @@
 
 namespace frontsteal::mpi {
 
-inline constexpr MPI_Aint kFront = 0;
-inline constexpr MPI_Aint kTransient = 4;
-inline constexpr MPI_Aint kEnd = 8;
-inline constexpr MPI_Aint kLock = 64;
-inline constexpr MPI_Aint kActive = 128;
-inline constexpr MPI_Aint kNextItem = 136;
-inline constexpr MPI_Aint kEntryCount = 192;
+// A word of a rank's part of the window: its C++ type and byte displacement. The type picks the MPI datatype.
+template <class T>
+struct WinField {
+  using Value = T;
+  MPI_Aint disp;
+};
+
+template <class T>
+MPI_Datatype mpi_datatype() noexcept;
+template <>
+inline MPI_Datatype mpi_datatype<std::uint32_t>() noexcept { return MPI_UINT32_T; }
+template <>
+inline MPI_Datatype mpi_datatype<std::int32_t>() noexcept { return MPI_INT32_T; }
+template <>
+inline MPI_Datatype mpi_datatype<std::uint64_t>() noexcept { return MPI_UINT64_T; }
+
+inline constexpr WinField<std::uint32_t> kFront{0};
+inline constexpr WinField<std::uint32_t> kTransient{4};
+inline constexpr WinField<std::uint32_t> kEnd{8};
+inline constexpr WinField<std::uint32_t> kLock{64};
+inline constexpr WinField<std::int32_t> kActive{128};
+inline constexpr WinField<std::uint64_t> kNextItem{136};
+inline constexpr WinField<std::uint32_t> kEntryCount{192};
 inline constexpr MPI_Aint kEntries = 256;
 
 // One list entry as it lies in the window: a range of ids and the flat position of its first id.
@@ -119,92 +138,67 @@ class RmaWindow {
   std::uint64_t bytes_moved() const noexcept { return bytes_; }
 
   // ---- this rank's own part: local memory (G2) ----
-  std::atomic_ref<std::uint32_t> local_u32(MPI_Aint disp) noexcept {
-    return std::atomic_ref<std::uint32_t>(*reinterpret_cast<std::uint32_t*>(static_cast<char*>(base_) + disp));
+  template <class T>
+  std::atomic_ref<T> local(WinField<T> f) noexcept {
+    return std::atomic_ref<T>(*reinterpret_cast<T*>(static_cast<char*>(base_) + f.disp));
   }
   WinEntry* local_entries() noexcept { return reinterpret_cast<WinEntry*>(static_cast<char*>(base_) + kEntries); }
   void sync() { check_mpi(MPI_Win_sync(win_), "MPI_Win_sync"); }  // G3
 
   // ---- one-sided operations on any rank's part (G1: each is flushed before it returns) ----
-  std::uint32_t get_u32(int rank, MPI_Aint disp) {
-    std::uint32_t v = 0;
-    check_mpi(MPI_Get(&v, 1, MPI_UINT32_T, rank, disp, 1, MPI_UINT32_T, win_), "MPI_Get");
-    flush(rank);
-    bytes_ += 4;
-    return v;
+  template <class T>
+  T get(int rank, WinField<T> f) {
+    T v{};
+    check_mpi(MPI_Get(&v, 1, mpi_datatype<T>(), rank, f.disp, 1, mpi_datatype<T>(), win_), "MPI_Get");
+    return completed(rank, sizeof(T), v);
   }
-  void put_u32(int rank, MPI_Aint disp, std::uint32_t v) {
-    check_mpi(MPI_Put(&v, 1, MPI_UINT32_T, rank, disp, 1, MPI_UINT32_T, win_), "MPI_Put");
-    flush(rank);
-    bytes_ += 4;
+  template <class T>
+  void put(int rank, WinField<T> f, T v) {
+    check_mpi(MPI_Put(&v, 1, mpi_datatype<T>(), rank, f.disp, 1, mpi_datatype<T>(), win_), "MPI_Put");
+    completed(rank, sizeof(T), 0);
+  }
+  // Compare-and-swap (G4): returns the value found.
+  template <class T>
+  T compare_and_swap(int rank, WinField<T> f, T expected, T desired) {
+    T found{};
+    check_mpi(MPI_Compare_and_swap(&desired, &expected, &found, mpi_datatype<T>(), rank, f.disp, win_),
+              "MPI_Compare_and_swap");
+    return completed(rank, 2 * sizeof(T), found);
+  }
+  // Fetch-and-op (G4): MPI_SUM adds `operand` and returns the old value; MPI_NO_OP is an atomic read.
+  template <class T>
+  T fetch_and_op(int rank, WinField<T> f, T operand, MPI_Op op) {
+    T found{};
+    check_mpi(MPI_Fetch_and_op(&operand, &found, mpi_datatype<T>(), rank, f.disp, op, win_), "MPI_Fetch_and_op");
+    return completed(rank, op == MPI_NO_OP ? sizeof(T) : 2 * sizeof(T), found);
+  }
+  template <class T>
+  T atomic_read(int rank, WinField<T> f) { return fetch_and_op(rank, f, T{}, MPI_NO_OP); }
+  // An atomic write (G4: the word is only ever touched by accumulate operations).
+  template <class T>
+  void accumulate_replace(int rank, WinField<T> f, T v) {
+    check_mpi(MPI_Accumulate(&v, 1, mpi_datatype<T>(), rank, f.disp, 1, mpi_datatype<T>(), MPI_REPLACE, win_),
+              "MPI_Accumulate");
+    completed(rank, sizeof(T), 0);
   }
   void get_entries(int rank, std::uint32_t first, std::uint32_t count, WinEntry* out) {
     if (count == 0) return;
     const int ints = static_cast<int>(count * 3);
     check_mpi(MPI_Get(out, ints, MPI_UINT32_T, rank, kEntries + static_cast<MPI_Aint>(first) * 12, ints,
                       MPI_UINT32_T, win_), "MPI_Get entries");
-    flush(rank);
-    bytes_ += count * 12ull;
-  }
-  // Compare-and-swap (G4): returns the value found.
-  std::uint32_t cas_u32(int rank, MPI_Aint disp, std::uint32_t expected, std::uint32_t desired) {
-    std::uint32_t found = 0;
-    check_mpi(MPI_Compare_and_swap(&desired, &expected, &found, MPI_UINT32_T, rank, disp, win_),
-              "MPI_Compare_and_swap");
-    flush(rank);
-    bytes_ += 8;
-    return found;
-  }
-  std::uint32_t atomic_read_u32(int rank, MPI_Aint disp) {
-    std::uint32_t found = 0;
-    std::uint32_t dummy = 0;
-    check_mpi(MPI_Fetch_and_op(&dummy, &found, MPI_UINT32_T, rank, disp, MPI_NO_OP, win_), "MPI_Fetch_and_op");
-    flush(rank);
-    bytes_ += 4;
-    return found;
-  }
-  void atomic_write_u32(int rank, MPI_Aint disp, std::uint32_t v) {
-    check_mpi(MPI_Accumulate(&v, 1, MPI_UINT32_T, rank, disp, 1, MPI_UINT32_T, MPI_REPLACE, win_),
-              "MPI_Accumulate");
-    flush(rank);
-    bytes_ += 4;
-  }
-  std::int32_t fetch_add_i32(int rank, MPI_Aint disp, std::int32_t delta) {
-    std::int32_t found = 0;
-    check_mpi(MPI_Fetch_and_op(&delta, &found, MPI_INT32_T, rank, disp, MPI_SUM, win_), "MPI_Fetch_and_op");
-    flush(rank);
-    bytes_ += 8;
-    return found;
-  }
-  std::int32_t atomic_read_i32(int rank, MPI_Aint disp) {
-    std::int32_t found = 0;
-    std::int32_t dummy = 0;
-    check_mpi(MPI_Fetch_and_op(&dummy, &found, MPI_INT32_T, rank, disp, MPI_NO_OP, win_), "MPI_Fetch_and_op");
-    flush(rank);
-    bytes_ += 4;
-    return found;
-  }
-  void atomic_write_i32(int rank, MPI_Aint disp, std::int32_t v) {
-    check_mpi(MPI_Accumulate(&v, 1, MPI_INT32_T, rank, disp, 1, MPI_INT32_T, MPI_REPLACE, win_), "MPI_Accumulate");
-    flush(rank);
-    bytes_ += 4;
-  }
-  std::uint64_t fetch_add_u64(int rank, MPI_Aint disp, std::uint64_t delta) {
-    std::uint64_t found = 0;
-    check_mpi(MPI_Fetch_and_op(&delta, &found, MPI_UINT64_T, rank, disp, MPI_SUM, win_), "MPI_Fetch_and_op");
-    flush(rank);
-    bytes_ += 16;
-    return found;
-  }
-  void atomic_write_u64(int rank, MPI_Aint disp, std::uint64_t v) {
-    check_mpi(MPI_Accumulate(&v, 1, MPI_UINT64_T, rank, disp, 1, MPI_UINT64_T, MPI_REPLACE, win_),
-              "MPI_Accumulate");
-    flush(rank);
-    bytes_ += 8;
+    completed(rank, count * sizeof(WinEntry), 0);
   }
   void flush(int rank) { check_mpi(MPI_Win_flush(rank, win_), "MPI_Win_flush"); }
 
  private:
+  // G1: the operation is complete at origin and target before its value is used; counts its payload bytes.
+  template <class T>
+  T completed(int rank, std::size_t bytes, T value) {
+    flush(rank);
+    bytes_ += bytes;
+    return value;
+  }
+
   void* base_ = nullptr;
   MPI_Win win_ = MPI_WIN_NULL;
   std::uint32_t capacity_;

@@ -1,0 +1,148 @@
+// calibration.cpp — frontsteal-mpi --calibrate (calibration.hpp).
+#include "distributed/calibration.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "core/paired_comparison.hpp"
+#include "distributed/rank_watchdog.hpp"
+#include "distributed/rma_stealing.hpp"
+#include "reporting/results_dir.hpp"
+
+#ifndef FRONTSTEAL_GIT_COMMIT
+#define FRONTSTEAL_GIT_COMMIT "unknown"
+#endif
+
+namespace frontsteal::mpi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int kReps = 20000;
+constexpr int kTagCalibrationDone = 184;
+constexpr int kTagPing = 185;
+constexpr std::size_t kBootstrapSampleCap = 500;  // an evenly strided subsample enters the bootstrap
+
+// Times `op` kReps times or for at most op_s seconds; the watchdog names the operation if one never returns.
+template <class Op>
+CalibrationRow time_op(const char* what, double op_s, Op&& op) {
+  set_phase(what);
+  std::vector<double> ns;
+  ns.reserve(kReps);
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(op_s));
+  CalibrationRow row{what};
+  for (int i = 0; i < kReps; ++i) {
+    const auto t0 = Clock::now();
+    op();
+    const auto t1 = Clock::now();
+    ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count());
+    note_progress();
+    if (t1 > deadline) {
+      row.time_bounded = true;
+      break;
+    }
+  }
+  row.repetitions = static_cast<int>(ns.size());
+  std::vector<double> sub;
+  for (std::size_t i = 0; i < ns.size(); i += ns.size() / kBootstrapSampleCap + 1) sub.push_back(ns[i]);
+  const stats::Interval ci = stats::bootstrap_median_ci(sub);
+  row.median_ns = median(ns);
+  row.ci_low_ns = ci.low;
+  row.ci_high_ns = ci.high;
+  return row;
+}
+
+std::vector<CalibrationRow> measure_from_rank0(const Options& o, RmaWindow& win) {
+  std::vector<CalibrationRow> rows;
+  const double s = o.calibrate_op_s;
+  rows.push_back(time_op("MPI_Get 4 B + MPI_Win_flush (remote)", s, [&] { (void)win.get(1, kFront); }));
+  rows.push_back(time_op("MPI_Put 4 B + MPI_Win_flush (remote)", s, [&] { win.put(1, kEntryCount, 0u); }));
+  rows.push_back(time_op("MPI_Compare_and_swap + flush (remote)", s, [&] { (void)win.compare_and_swap(1, kLock, 7u, 7u); }));
+  rows.push_back(time_op("MPI_Fetch_and_op SUM + flush (remote)", s, [&] { (void)win.fetch_and_op(1, kActive, 0, MPI_SUM); }));
+  rows.push_back(time_op("MPI_Win_flush alone (nothing pending)", s, [&] { win.flush(1); }));
+  rows.push_back(time_op("MPI_Win_sync (owner F1)", s, [&] { win.sync(); }));
+  RmaActiveCount active(win);
+  RmaOwner owner(win, 0);
+  const RangeList big{{0, static_cast<ItemId>(std::min<std::uint32_t>(win.capacity(), 1u << 20))}};
+  owner.install(big);
+  rows.push_back(time_op("RMA owner claim, F1 = MPI_Win_sync + fence", s, [&] { (void)owner.try_claim(); }));
+  RmaOwner plain_owner(win, 0, false);
+  plain_owner.install(big);
+  rows.push_back(time_op("RMA owner claim, F1 = fence only (default)", s, [&] { (void)plain_owner.try_claim(); }));
+  OwnerProgress poke(MPI_COMM_WORLD, 0);
+  rows.push_back(time_op("owner progress call (MPI_Iprobe, unused tag)", s, [&] { poke.call(); }));
+  rows.push_back(time_op("request owner poll (MPI_Iprobe, nothing pending)", s, [&] {
+    int flag = 0;
+    MPI_Iprobe(MPI_ANY_SOURCE, 181, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
+  }));
+  rows.push_back(time_op("MPI_Send/MPI_Recv ping-pong 4 B (round trip)", s, [&] {
+    std::uint32_t word = 0;
+    MPI_Send(&word, 1, MPI_UINT32_T, 1, kTagPing, MPI_COMM_WORLD);
+    MPI_Recv(&word, 1, MPI_UINT32_T, 1, kTagPing, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  }));
+  rows.push_back(time_op("clock pair alone (measurement floor)", s, [] {}));
+  return rows;
+}
+
+}  // namespace
+
+report::Json calibration_json(const std::vector<CalibrationRow>& rows, int ranks, const ProgressChoice& progress) {
+  report::Json doc = report::document(kProgram, 1, "measured", FRONTSTEAL_GIT_COMMIT);
+  doc["contents"] = "calibration";
+  doc["ranks"] = ranks;
+  doc["one_node"] = progress.one_node;
+  doc["osc_requested"] = progress.osc_requested;
+  doc["target"] = "rank 1 spinning on MPI_Iprobe (an attentive target)";
+  report::Json list = report::Json::array();
+  for (const CalibrationRow& r : rows) {
+    list.push_back({{"operation", r.operation}, {"median_ns", r.median_ns},
+                    {"median_ci95_ns", {r.ci_low_ns, r.ci_high_ns}}, {"repetitions", r.repetitions},
+                    {"time_bounded", r.time_bounded}});
+  }
+  doc["operations"] = list;
+  doc["published_reference_ns"] = {{"get", 1300}, {"compare_and_swap", 1700},
+                                   {"note", "MPI-3 RMA work stealing, two processes on one computer, async progress"}};
+  return doc;
+}
+
+int calibrate(const Options& o, int rank, int ranks, RmaWindow& win, const ProgressChoice& progress) {
+  if (ranks < 2) {
+    if (rank == 0) std::fprintf(stderr, "%s: --calibrate needs at least 2 ranks\n", kProgram.data());
+    return 2;
+  }
+  arm_watchdog();
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank == 0) {
+    const std::vector<CalibrationRow> rows = measure_from_rank0(o, win);
+    for (int r = 1; r < ranks; ++r) MPI_Send(nullptr, 0, MPI_BYTE, r, kTagCalibrationDone, MPI_COMM_WORLD);
+    std::printf("calibration: rank 0 -> rank 1, up to %d repetitions or %.1f s each, median [95 %% CI] ns "
+                "(measured, this machine; %s)\n", kReps, o.calibrate_op_s, progress.describe().c_str());
+    for (const CalibrationRow& r : rows) {
+      std::printf("  %-52s %10.0f ns  [%.0f, %.0f]  n=%d%s\n", r.operation.c_str(), r.median_ns, r.ci_low_ns,
+                  r.ci_high_ns, r.repetitions, r.time_bounded ? " (time-bounded)" : "");
+    }
+    std::printf("published reference (one computer, async progress): get ~1300 ns, CAS ~1700 ns\n");
+    if (!o.json.empty()) {
+      report::write_atomically(o.json, calibration_json(rows, ranks, progress).dump(2) + "\n");
+      std::fprintf(stderr, "%s: wrote %s\n", kProgram.data(), o.json.c_str());
+    }
+  } else {
+    // The target: drive the progress engine until rank 0 is done, so its operations complete (see header).
+    set_phase("calibration target (progress loop)");
+    while (true) {
+      int flag = 0;
+      MPI_Status st;
+      MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
+      note_progress();
+      if (!flag) continue;
+      std::uint32_t word = 0;
+      MPI_Recv(&word, st.MPI_TAG == kTagPing ? 1 : 0, MPI_UINT32_T, 0, st.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      if (st.MPI_TAG != kTagPing) break;  // "done"
+      MPI_Send(&word, 1, MPI_UINT32_T, 0, kTagPing, MPI_COMM_WORLD);  // the ping's echo
+    }
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  return 0;
+}
+
+}  // namespace frontsteal::mpi

@@ -1,0 +1,190 @@
+// frame_runner.cpp — FrameRunner (frame_runner.hpp): items and faults, the rma, central and static frames,
+// and the rank's statistics. The request scheduler's frame is in request_frame.cpp.
+#include "distributed/frame_runner.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <thread>
+
+#include "core/paired_comparison.hpp"
+#include "distributed/rank_watchdog.hpp"
+
+namespace frontsteal::mpi {
+
+FrameRunner::FrameRunner(const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win,
+                         double owner_progress_us)
+    : o_(o), wl_(wl), rank_(rank), ranks_(ranks), win_(win), active_(win),
+      progress_(MPI_COMM_WORLD, owner_progress_us) {
+  for (int v = 0; v < ranks; ++v) {
+    if (v != rank) victims_.push_back(v);
+  }
+  std::mt19937_64 rng(0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(rank + 1));
+  std::shuffle(victims_.begin(), victims_.end(), rng);  // §4.2.1: victims in a random order per processor
+  defects_ = o.defect == "skip-reread" ? Defect::kSkipFrontReread : Defect::kNone;
+}
+
+// Runs one item, with the fault hooks; counts and triangles go to the frame.
+void FrameRunner::execute(Frame& fr, ItemId id) {
+  const auto t0 = Clock::now();
+  fr.triangles += wl_.run(fr.f, id);
+  (*fr.counts)[id] += 1;
+  stats_.busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  stats_.items += 1;
+  note_progress();
+  if (first_item_done_) return;
+  first_item_done_ = true;
+  if (fr.f == o_.die_frame && rank_ == o_.die_rank) {
+    std::fprintf(stderr, "%s: rank %d: --die: exiting abruptly in frame %d\n", kProgram.data(), rank_, fr.f);
+    std::fflush(stderr);
+    std::_Exit(3);
+  }
+  if (fr.f == o_.stall_frame && rank_ == o_.stall_rank) stall(fr.f);
+}
+
+void FrameRunner::begin_frame(const std::string& scheduler) {
+  first_item_done_ = false;
+  scheduler_ = &scheduler;
+}
+
+// --stall: sleep MS ms between two items (never between O1 and O4). Under rma, also until a thief has
+// lowered this rank's End (its work was stolen while it stalled), bounded by 60 s: the steal is then a
+// fact the test can assert, not a matter of timing. The MPI_Win_sync every millisecond is the stalled
+// rank's progress call (owner_progress.hpp): a sleeping process makes none otherwise.
+void FrameRunner::stall(int frame) {
+  std::fprintf(stderr, "%s: rank %d: --stall: stalling %d ms in frame %d (%s)\n", kProgram.data(), rank_,
+               o_.stall_ms, frame, scheduler_->c_str());
+  const auto start = Clock::now();
+  const std::uint32_t end_before = win_.local(kEnd).load(std::memory_order_acquire);
+  std::this_thread::sleep_for(std::chrono::milliseconds(o_.stall_ms));
+  if (*scheduler_ == "rma") {
+    while (win_.local(kEnd).load(std::memory_order_acquire) == end_before &&
+           Clock::now() - start < std::chrono::seconds(60)) {
+      win_.sync();
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      note_progress();
+    }
+    const std::uint32_t end_after = win_.local(kEnd).load(std::memory_order_acquire);
+    std::fprintf(stderr, "%s: rank %d: --stall: %s while stalled (End %u -> %u)\n", kProgram.data(), rank_,
+                 end_after < end_before ? "work was stolen" : "NOTHING was stolen", end_before, end_after);
+  }
+  note_progress();
+}
+
+// ---- rma: load stealing over the window ----
+void FrameRunner::rma_frame(Frame& fr, RmaOwner& owner, RmaThief& thief, RangeList& log) {
+  log.clear();
+  drain_rma(fr, owner, log);
+  active_.leave();  // A2: own list exhausted, every claimed item done
+  RmaStealHooks hooks;
+  hooks.defects = defects_;
+  hooks.force_overlap = o_.force_overlap;
+  std::uint32_t failed_rounds = 0;
+  const auto idle_start = Clock::now();
+  const double busy_before = stats_.busy_s;
+  while (!active_.all_idle()) {  // A3
+    bool got = false;
+    for (int v : victims_) {
+      const auto t0 = Clock::now();
+      stats_.steal_attempts += 1;
+      const RmaStealOutcome out = thief.try_steal(v, hooks);
+      if (out != RmaStealOutcome::kStolen) continue;
+      record_steal(Clock::now() - t0);
+      owner.install(thief.share());
+      drain_rma(fr, owner, log);
+      active_.leave();  // A2: the stolen share is done
+      got = true;
+      break;
+    }
+    // Back off after fruitless rounds (up to 256 us): with more ranks than cores an idle thief's polling
+    // takes the CPU from the very owner it waits for.
+    if (got) {
+      failed_rounds = 0;
+    } else if (++failed_rounds < 4) {
+      std::this_thread::yield();
+    } else {
+      std::this_thread::sleep_for(std::chrono::microseconds(1u << std::min<std::uint32_t>(failed_rounds - 4, 8)));
+    }
+  }
+  stats_.idle_s += std::chrono::duration<double>(Clock::now() - idle_start).count() - (stats_.busy_s - busy_before);
+}
+
+// The owner's loop: claim (O1-O4), then maybe one progress call for the transport; both are owner overhead.
+void FrameRunner::drain_rma(Frame& fr, RmaOwner& owner, RangeList& log) {
+  while (true) {
+    const auto t0 = Clock::now();
+    const std::optional<ItemId> id = owner.try_claim();
+    if (id && progress_.maybe_call(t0)) stats_.progress_calls += 1;
+    record_owner_op(Clock::now() - t0);
+    if (!id) return;
+    append_merging(log, {*id, *id + 1});
+    execute(fr, *id);
+  }
+}
+
+// ---- central counter in rank 0's window ----
+void FrameRunner::central_frame(Frame& fr) {
+  const std::uint64_t grain = std::max<std::uint64_t>(1, wl_.n / (100ull * static_cast<std::uint64_t>(ranks_)));
+  while (true) {
+    const auto t0 = Clock::now();
+    const std::uint64_t s = win_.fetch_and_op(0, kNextItem, grain, MPI_SUM);
+    record_owner_op(Clock::now() - t0);
+    if (s >= wl_.n) break;
+    const std::uint64_t e = std::min<std::uint64_t>(s + grain, wl_.n);
+    for (std::uint64_t id = s; id < e; ++id) execute(fr, static_cast<ItemId>(id));
+  }
+}
+
+// ---- static round robin ----
+void FrameRunner::static_frame(Frame& fr) {
+  for (std::uint64_t id = static_cast<std::uint64_t>(rank_); id < wl_.n; id += static_cast<std::uint64_t>(ranks_)) {
+    execute(fr, static_cast<ItemId>(id));
+  }
+}
+
+void FrameRunner::record_owner_op(Clock::duration d) {
+  const double ns = std::chrono::duration<double, std::nano>(d).count();
+  stats_.owner_overhead_s += ns * 1e-9;
+  stats_.owner_ops += 1;
+  if (owner_samples_.size() < (1u << 21)) owner_samples_.push_back(static_cast<float>(ns));
+}
+
+void FrameRunner::record_steal(Clock::duration d) {
+  const double s = std::chrono::duration<double>(d).count();
+  stats_.steals += 1;
+  stats_.steal_latency_s += s;
+  stats_.steal_latency_max_s = std::max(stats_.steal_latency_max_s, s);
+  steal_latencies_us_.push_back(1e6 * s);
+}
+
+// At most this many samples enter a bootstrap (10,000 resamples each): an evenly strided subsample, so the
+// interval is that of the subsample's median (with ~10^6 samples it would be far narrower still).
+constexpr std::size_t kBootstrapSampleCap = 500;
+
+RankStats& FrameRunner::finish_stats() {
+  if (!owner_samples_.empty()) {
+    std::vector<float> sorted = owner_samples_;
+    auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+    std::nth_element(sorted.begin(), mid, sorted.end());
+    stats_.owner_overhead_median_ns = *mid;
+    const std::size_t stride = owner_samples_.size() / kBootstrapSampleCap + 1;
+    std::vector<double> sub;
+    for (std::size_t i = 0; i < owner_samples_.size(); i += stride) sub.push_back(owner_samples_[i]);
+    const stats::Interval ci = stats::bootstrap_median_ci(sub);
+    stats_.owner_overhead_ci_low_ns = ci.low;
+    stats_.owner_overhead_ci_high_ns = ci.high;
+  }
+  if (!steal_latencies_us_.empty()) {
+    const std::size_t stride = steal_latencies_us_.size() / kBootstrapSampleCap + 1;
+    std::vector<double> sub;
+    for (std::size_t i = 0; i < steal_latencies_us_.size(); i += stride) sub.push_back(steal_latencies_us_[i]);
+    const stats::Interval ci = stats::bootstrap_median_ci(sub);
+    stats_.steal_latency_median_us = ci.median;
+    stats_.steal_latency_ci_low_us = ci.low;
+    stats_.steal_latency_ci_high_us = ci.high;
+  }
+  return stats_;
+}
+
+}  // namespace frontsteal::mpi

@@ -1,0 +1,83 @@
+// frame_runner.hpp — one rank's part of a frame under each scheduler of frontsteal-mpi:
+//   rma       load stealing with each rank's slot in an MPI-3 window (rma_stealing.hpp): the owner claims
+//             locally, thieves steal with one-sided Get/Put/CAS; the busy rank never answers anyone (but may
+//             call into MPI for the transport's sake: owner_progress.hpp).
+//   request   request-based stealing (§7: "request based load stealing, but overhead on the busy processors
+//             must increase"): an idle rank sends a steal request; the busy owner polls (MPI_Iprobe) between
+//             items and replies with the second half of its remaining list.
+//   central   a central counter in rank 0's window (MPI_Fetch_and_op), grain N/(100P) as §4.1.
+//   static    static round robin over ranks (§3), no communication.
+// TERMINATION inside a frame: the active count of core/active_workers.hpp (I-T) in rank 0's window
+// (RmaActiveCount): not a master, rank 0 runs no code for it (passive target). The request scheduler ends its
+// frame with MPI_Ibarrier while still answering requests (empty), so no request is left unanswered.
+// FAULTS: --stall and --die act after the rank's first item of the named frame (execute()).
+#pragma once
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/id_range.hpp"
+#include "core/policies.hpp"
+#include "distributed/mpi_options.hpp"
+#include "distributed/mpi_workload.hpp"
+#include "distributed/owner_progress.hpp"
+#include "distributed/rank_stats.hpp"
+#include "distributed/rma_stealing.hpp"
+#include "distributed/rma_window.hpp"
+
+namespace frontsteal::mpi {
+
+inline constexpr int kTagRequest = 181;
+inline constexpr int kTagReply = 182;
+
+// One frame on this rank: its number, the per-item execution counts (the audit) and its triangles.
+struct Frame {
+  int f;
+  std::vector<std::uint32_t>* counts;
+  std::uint64_t triangles = 0;
+};
+
+class FrameRunner {
+ public:
+  using Clock = std::chrono::steady_clock;
+  FrameRunner(const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win, double owner_progress_us);
+
+  void begin_frame(const std::string& scheduler);
+  void rma_frame(Frame& fr, RmaOwner& owner, RmaThief& thief, RangeList& log);
+  void request_frame(Frame& fr, RangeList list, RangeList& log);
+  void central_frame(Frame& fr);
+  void static_frame(Frame& fr);
+
+  // The rank's statistics, with the medians and their 95 % bootstrap intervals filled in.
+  RankStats& finish_stats();
+  RmaActiveCount& active() { return active_; }
+
+ private:
+  void execute(Frame& fr, ItemId id);
+  void stall(int frame);
+  void drain_rma(Frame& fr, RmaOwner& owner, RangeList& log);
+  void drain_request(Frame& fr, RangeList list, RangeList& log);
+  void serve_requests(RangeList* list, std::size_t* index = nullptr);
+  void record_owner_op(Clock::duration d);
+  void record_steal(Clock::duration d);
+
+  const Options& o_;
+  Workload& wl_;
+  int rank_, ranks_;
+  RmaWindow& win_;
+  RmaActiveCount active_;
+  OwnerProgress progress_;
+  std::vector<int> victims_;
+  Defect defects_ = Defect::kNone;
+  RankStats stats_;
+  std::vector<float> owner_samples_;
+  std::vector<double> steal_latencies_us_;
+  bool first_item_done_ = false;
+  const std::string* scheduler_ = nullptr;
+};
+
+}  // namespace frontsteal::mpi

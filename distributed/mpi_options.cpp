@@ -1,0 +1,145 @@
+// mpi_options.cpp — frontsteal-mpi's options (mpi_options.hpp), through report::CommandLine (CLI11).
+#include "distributed/mpi_options.hpp"
+
+#include <charconv>
+#include <cstdlib>
+
+#include "core/id_range.hpp"
+#include "reporting/command_line.hpp"
+
+namespace frontsteal::mpi {
+namespace {
+
+constexpr const char* kDescription = R"(usage: mpirun -np P frontsteal-mpi [options]
+
+Runs the frame loop across MPI ranks under each scheduler (rma, request, central, static), audits every frame
+(each item executed exactly once, triangle count equal to a serial loop's) and prints a table per scheduler:
+frames/s, per-rank busy time, items, steals, mean steal latency, bytes moved, owner overhead per item; then
+medians with 95 % bootstrap confidence intervals and the noise monitor's verdict.
+As root, Open MPI needs OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 in the environment; with more
+ranks than cores add --oversubscribe --mca mpi_yield_when_idle 1.)";
+constexpr const char* kFooter = R"(
+Exit status: 0 all audits passed; 1 an audit failed; 2 bad command line; 3 --die; 86 watchdog.)";
+
+std::vector<std::string> split(std::string_view s, char sep) {
+  std::vector<std::string> out;
+  while (true) {
+    const auto p = s.find(sep);
+    out.emplace_back(s.substr(0, p));
+    if (p == std::string_view::npos) break;
+    s.remove_prefix(p + 1);
+  }
+  return out;
+}
+
+// "A:B:C" of `parts` non-negative integers, each at most the matching bound.
+CLI::Validator integers_validator(std::vector<int> bounds, std::string shape) {
+  return CLI::Validator(
+      [bounds, shape](std::string& text) -> std::string {
+        const auto p = split(text, ':');
+        if (p.size() != bounds.size()) return "expects " + shape + ", got '" + text + "'";
+        for (std::size_t k = 0; k < p.size(); ++k) {
+          int v = -1;
+          const auto [end, ec] = std::from_chars(p[k].data(), p[k].data() + p[k].size(), v);
+          if (ec != std::errc{} || end != p[k].data() + p[k].size() || v < 0 || v > bounds[k]) {
+            return "expects " + shape + " (non-negative integers, at most " + std::to_string(bounds[k]) + " in place " +
+                   std::to_string(k + 1) + "), got '" + text + "'";
+          }
+        }
+        return {};
+      },
+      shape);
+}
+
+CLI::Validator scene_validator() {
+  return CLI::Validator(
+      [](std::string& v) -> std::string {
+        if (v.empty()) return "needs a non-empty value";
+        if (v.rfind("synthetic:", 0) != 0) return {};
+        ItemId n = 0;
+        const std::string_view t = std::string_view(v).substr(10);
+        const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), n);
+        if (ec != std::errc{} || end != t.data() + t.size() || n < 1 || n > 50000000) {
+          return "synthetic:N needs N between 1 and 50000000, got '" + v + "'";
+        }
+        return {};
+      },
+      "");
+}
+
+CLI::Validator owner_progress_validator() {
+  return CLI::Validator(
+      [](std::string& v) -> std::string {
+        if (v == "auto" || v == "off") return {};
+        double us = -1;
+        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), us);
+        if (ec != std::errc{} || end != v.data() + v.size() || us < 0 || us > 1e6) {
+          return "expects auto, off or microseconds between 0 and 1000000, got '" + v + "'";
+        }
+        return {};
+      },
+      "auto|off|US");
+}
+
+}  // namespace
+
+int launcher_rank() {
+  for (const char* v : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"}) {
+    if (const char* s = std::getenv(v)) return std::atoi(s);
+  }
+  return 0;
+}
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  report::CommandLine cli(std::string(kProgram), kDescription, kFooter);
+  cli.set_speaks(launcher_rank() == 0);  // every rank parses; rank 0 alone prints
+  cli.option("--scene", o.scene, "synthetic:N | teapot | teacup | teaspoon | plant:N[:seed] | model file")
+      ->check(scene_validator());
+  cli.option("--frames", o.frames, "frames along the camera path")->check(CLI::Range(1, 100000));
+  cli.app().add_option("--schedulers", o.schedulers, "comma list of rma,request,central,static")
+      ->delimiter(',')->check(CLI::IsMember({"rma", "request", "central", "static"}));
+  cli.option("--work-ns", o.work_ns, "synthetic: cost of a light item in ~ns of busy work")->check(CLI::Range(0u, 100000000u));
+  cli.option("--skew", o.skew, "synthetic: the heavy fifth of the ids (a window that moves each frame) costs K x")
+      ->check(CLI::Range(1u, 10000u));
+  cli.option("--tolerance", o.tolerance, "tessellation pixel tolerance")->check(CLI::PositiveNumber);
+  cli.option("--json", o.json, "also write the results (or, with --calibrate, the latencies) as JSON to this file");
+  cli.option("--markdown", o.markdown, "also write the medians with 95 % CIs and the noise verdict as markdown");
+  cli.option("--watchdog-s", o.watchdog_s, "a rank that makes no progress for S s exits 86 (0 = off)")
+      ->check(CLI::Range(0.0, 86400.0));
+  std::string stall, die;
+  cli.option("--stall", stall, "R:F:MS: rank R sleeps MS ms after its first item of frame F (fault test)")
+      ->check(integers_validator({1 << 20, 100000, 3600000}, "RANK:FRAME:MS"));
+  cli.option("--die", die, "R:F: rank R exits abruptly (status 3) after its first item of frame F (fault test)")
+      ->check(integers_validator({1 << 20, 100000}, "RANK:FRAME"));
+  cli.option("--plant-defect", o.defect, "negative controls: none | skip-reread (rma thief skips T4/T5) | "
+             "request-keeps-share (request owner sends a share and keeps it)")
+      ->check(CLI::IsMember({"none", "skip-reread", "request-keeps-share"}));
+  cli.flag("--force-overlap", o.force_overlap, "rma thieves wait, before T3, until the victim has claimed into the planned share");
+  cli.option("--owner-fence", o.owner_fence, "the rma owner's F1: cpu (a seq_cst fence, no MPI call on the owner path) | "
+             "win-sync (MPI_Win_sync + the fence: the standard's barrier, but a progress call per claim)")
+      ->check(CLI::IsMember({"cpu", "win-sync"}));
+  cli.option("--owner-progress", o.owner_progress, "the busy rma owner calls MPI_Iprobe at most every US microseconds "
+             "(0: every item) so one-sided operations aimed at it complete on transports without asynchronous "
+             "progress (TCP); auto: off when every rank shares one node's memory, else 0")
+      ->check(owner_progress_validator());
+  cli.flag("--require-steals", o.require_steals, "exit 1 unless rma and request each made at least one steal (tests: "
+           "stealing was exercised)");
+  cli.flag("--calibrate", o.calibrate, "measure get/put/CAS/fetch-and-op/flush latency and the owner's per-item "
+           "costs, then exit");
+  cli.option("--calibrate-op-s", o.calibrate_op_s, "--calibrate: at most this many seconds per operation")
+      ->check(CLI::Range(0.01, 600.0));
+  cli.quiet(o.quiet);
+  cli.parse(argc, argv);
+  if (!stall.empty()) {
+    const auto p = split(stall, ':');
+    o.stall_rank = std::stoi(p[0]), o.stall_frame = std::stoi(p[1]), o.stall_ms = std::stoi(p[2]);
+  }
+  if (!die.empty()) {
+    const auto p = split(die, ':');
+    o.die_rank = std::stoi(p[0]), o.die_frame = std::stoi(p[1]);
+  }
+  return o;
+}
+
+}  // namespace frontsteal::mpi

@@ -1,0 +1,46 @@
+// mpi_options.hpp — frontsteal-mpi's command line: what a run measures and which faults it plants.
+//
+// Every rank parses the same argv before MPI_Init (a bad flag costs no MPI start-up); only the rank the
+// launcher calls 0 prints, and every rank exits 2 (report::CommandLine's usage contract).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <cstdint>
+
+namespace frontsteal::mpi {
+
+inline constexpr std::string_view kProgram = "frontsteal-mpi";
+inline constexpr int kWatchdogExitCode = 86;  // as core/watchdog.hpp: distinct from a failed audit (1) and usage (2)
+
+struct Options {
+  std::string scene = "synthetic:20000";
+  int frames = 30;
+  std::vector<std::string> schedulers{"rma", "request", "central", "static"};
+  std::uint32_t work_ns = 2000;
+  std::uint32_t skew = 20;
+  double tolerance = 1.0;
+  std::string json;
+  std::string markdown;
+  double watchdog_s = 60;
+  int stall_rank = -1, stall_frame = -1, stall_ms = 0;
+  int die_rank = -1, die_frame = -1;
+  std::string defect = "none";
+  bool force_overlap = false;
+  bool calibrate = false;
+  double calibrate_op_s = 2.0;  // each calibrated operation runs for at most this long
+  bool require_steals = false;
+  std::string owner_fence = "cpu";
+  std::string owner_progress = "auto";  // auto | off | U (µs between the busy owner's progress calls; 0: every item)
+  bool quiet = false;
+};
+
+// The rank the launcher assigned (Open MPI, MPICH/hydra, PMIx), readable before MPI_Init; 0 when unknown.
+int launcher_rank();
+
+// Parses argv; on a usage error prints (rank 0 only) and exits 2, on --help prints and exits 0.
+Options parse_options(int argc, char** argv);
+
+}  // namespace frontsteal::mpi

@@ -1,0 +1,68 @@
+// mpi_workload.cpp — the workload of frontsteal-mpi (mpi_workload.hpp).
+#include "distributed/mpi_workload.hpp"
+
+#include <stdexcept>
+
+#include "core/synthetic_work.hpp"
+
+#ifndef FRONTSTEAL_DATA_DIR
+#define FRONTSTEAL_DATA_DIR "data"
+#endif
+
+namespace frontsteal::mpi {
+namespace {
+
+std::uint32_t synthetic_triangles(int frame, ItemId id) {
+  return static_cast<std::uint32_t>((id * 2654435761u ^ static_cast<std::uint32_t>(frame) * 40503u) % 97u + 1u);
+}
+
+void build_synthetic(const Options& o, Workload& wl) {
+  wl.kind = "synthetic";
+  wl.n = static_cast<ItemId>(std::stoul(o.scene.substr(10)));  // checked by parse_options()
+  const ItemId n = wl.n;
+  const std::uint32_t light = o.work_ns, heavy_cost = o.work_ns * o.skew;
+  wl.run = [n, light, heavy_cost](int f, ItemId id) {
+    spin_work(synthetic_heavy(f, id, n) ? heavy_cost : light);
+    return synthetic_triangles(f, id);
+  };
+  wl.serial_triangles = [n](int f) {
+    std::uint64_t t = 0;
+    for (ItemId id = 0; id < n; ++id) t += synthetic_triangles(f, id);
+    return t;
+  };
+}
+
+}  // namespace
+
+void build_workload(const Options& o, int rank, Workload& wl) {
+  if (o.scene.rfind("synthetic:", 0) == 0) {
+    build_synthetic(o, wl);
+    return;
+  }
+  wl.kind = "tessellation";
+  wl.model = tess::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
+  wl.n = static_cast<ItemId>(wl.model.surfaces.size());
+  if (wl.n == 0) throw std::runtime_error("scene '" + o.scene + "' has no surfaces");
+  for (const tess::Surface& s : wl.model.surfaces) wl.prepared.push_back(tess::prepare_surface(s));
+  wl.buffers.resize(wl.n);
+  wl.settings.pixel_tolerance = o.tolerance;
+  const tess::Box box = tess::model_box(wl.model);
+  for (int f = 0; f < o.frames; ++f) {
+    wl.cameras.push_back(tess::camera_on_path(box, f, o.frames));
+    wl.frusta.push_back(tess::Frustum::of(wl.cameras.back()));
+  }
+  wl.run = [&wl](int f, ItemId id) {
+    return tess::tessellate_surface(wl.prepared[id], wl.cameras[f], wl.frusta[f], wl.settings, wl.scratch,
+                                    wl.buffers[id]).triangles;
+  };
+  if (rank == 0) {  // the serial reference: a plain loop, once, before any scheduler runs
+    for (int f = 0; f < o.frames; ++f) {
+      std::uint64_t t = 0;
+      for (ItemId id = 0; id < wl.n; ++id) t += wl.run(f, id);
+      wl.serial.push_back(t);
+    }
+  }
+  wl.serial_triangles = [&wl](int f) { return wl.serial[static_cast<std::size_t>(f)]; };
+}
+
+}  // namespace frontsteal::mpi

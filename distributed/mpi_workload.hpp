@@ -1,0 +1,38 @@
+// mpi_workload.hpp — the read-only workload every rank builds identically: the tessellation scenes along the
+// camera path of frontsteal, or synthetic:N items whose heaviest fifth moves each frame.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/id_range.hpp"
+#include "distributed/mpi_options.hpp"
+#include "distributed/synthetic_cost.hpp"
+#include "tessellate/camera_path.hpp"
+#include "tessellate/scene_generator.hpp"
+#include "tessellate/surface_tessellator.hpp"
+
+namespace frontsteal::mpi {
+
+struct Workload {
+  ItemId n = 0;
+  std::string kind;                                             // "synthetic" or "tessellation"
+  std::function<std::uint32_t(int frame, ItemId id)> run;       // executes item id of frame f; its triangles
+  std::function<std::uint64_t(int frame)> serial_triangles;     // the serial loop's count for frame f (rank 0)
+  // Tessellation state (empty for synthetic).
+  tess::Model model;
+  std::vector<tess::PreparedSurface> prepared;
+  std::vector<tess::TriangleBuffers> buffers;
+  std::vector<tess::Camera> cameras;
+  std::vector<tess::Frustum> frusta;
+  tess::TessellationSettings settings;
+  tess::TessellationScratch scratch;
+  std::vector<std::uint64_t> serial;
+};
+
+// Fills wl (in place: its closures point into it). Rank 0 also runs the serial reference loop.
+void build_workload(const Options& o, int rank, Workload& wl);
+
+}  // namespace frontsteal::mpi

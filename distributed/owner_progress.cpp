@@ -1,0 +1,45 @@
+// owner_progress.cpp — resolving --owner-progress (owner_progress.hpp).
+#include "distributed/owner_progress.hpp"
+
+#include <cstdlib>
+#include <sstream>
+
+namespace frontsteal::mpi {
+
+ProgressChoice resolve_owner_progress(const std::string& option, MPI_Comm comm) {
+  ProgressChoice c;
+  MPI_Comm node;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int node_size = 0, size = 0;
+  MPI_Comm_size(node, &node_size);
+  MPI_Comm_size(comm, &size);
+  MPI_Comm_free(&node);
+  c.one_node = node_size == size;
+  if (const char* osc = std::getenv("OMPI_MCA_osc")) c.osc_requested = osc;
+  const bool sm_possible = c.one_node && (c.osc_requested.empty() || c.osc_requested.find("sm") != std::string::npos);
+  if (option == "auto") {
+    c.every_us = sm_possible ? -1 : 0;
+  } else if (option == "off") {
+    c.every_us = -1;
+  } else {
+    c.every_us = std::strtod(option.c_str(), nullptr);  // validated by parse_options()
+  }
+  return c;
+}
+
+std::string ProgressChoice::describe() const {
+  std::ostringstream s;
+  s << "owner progress calls: ";
+  if (every_us < 0) {
+    s << "off";
+  } else if (every_us == 0) {
+    s << "MPI_Iprobe after every item";
+  } else {
+    s << "MPI_Iprobe at most every " << every_us << " us";
+  }
+  s << " (ranks " << (one_node ? "share one node" : "span several nodes") << "; osc "
+    << (osc_requested.empty() ? "chosen by Open MPI (sm on one node)" : "requested: " + osc_requested) << ")";
+  return s.str();
+}
+
+}  // namespace frontsteal::mpi

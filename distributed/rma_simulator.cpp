@@ -1,0 +1,371 @@
+// rma_simulator.cpp — the discrete-event model of rma_simulator.hpp. SIMULATED numbers only.
+#include "distributed/rma_simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <random>
+#include <stdexcept>
+#include <tuple>
+
+#include "distributed/synthetic_cost.hpp"
+
+namespace frontsteal::mpi::sim {
+namespace {
+
+constexpr double kYieldNs = 1000;          // an idle loop's sched_yield on a loaded core (assumed)
+constexpr double kInstallRetryNs = 500;    // a thief's install waits for its own LockList (held by a thief)
+constexpr std::uint64_t kEventLimit = 2'000'000'000ull;
+
+enum class Step : std::uint8_t { kOwner, kRoundStart, kTryVictim, kT1, kT2, kT3, kT4, kInstall, kAwaitReply, kDone };
+
+struct Rank {
+  std::vector<ItemId> list, executed, share;
+  std::uint32_t front = 0, end = 0;
+  bool busy = false, locked = false;
+  double busy_until = 0, server_free = 0, finish = 0, steal_start = 0;
+  Step step = Step::kOwner;
+  std::vector<int> victims;
+  std::size_t victim_index = 0, next_request = 0;
+  std::uint32_t mid = 0, old_end = 0, front_read = 0, failed_rounds = 0;
+  std::vector<std::pair<int, double>> pending;  // request: (thief, arrival)
+};
+
+class Model {
+ public:
+  Model(Scheduler s, int p, const Workload& w, const Latencies& lat, std::uint64_t seed, Defect d)
+      : s_(s), p_(p), w_(w), lat_(lat), defect_(d), ranks_(static_cast<std::size_t>(p)) {
+    for (int r = 0; r < p; ++r) {
+      Rank& k = ranks_[static_cast<std::size_t>(r)];
+      for (int v = 0; v < p; ++v) {
+        if (v != r) k.victims.push_back(v);
+      }
+      std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(r));
+      std::shuffle(k.victims.begin(), k.victims.end(), rng);
+      const auto b = static_cast<ItemId>(std::uint64_t{w.items} * r / p);
+      const auto e = static_cast<ItemId>(std::uint64_t{w.items} * (r + 1) / p);
+      for (ItemId id = b; id < e; ++id) k.list.push_back(id);
+    }
+  }
+
+  Result run() {
+    Result res;
+    res.scheduler = s_;
+    res.ranks = p_;
+    for (int f = 0; f < w_.frames && res.exactly_once; ++f) {
+      frame_ = f;
+      const double t = s_ == Scheduler::kStatic ? static_frame() : event_frame();
+      res.time_ns += t + barrier_ns();
+      audit(res);
+    }
+    for (ItemId id = 0; id < w_.items; ++id) {
+      for (int f = 0; f < w_.frames; ++f) res.work_ns += cost(f, id);
+    }
+    res.efficiency = res.work_ns / (p_ * res.time_ns);
+    res.steals = steals_;
+    res.steal_attempts = attempts_;
+    res.remote_operations = remote_ops_;
+    res.mean_steal_ns = steals_ ? steal_ns_ / static_cast<double>(steals_) : 0;
+    return res;
+  }
+
+ private:
+  double cost(int f, ItemId id) const { return synthetic_heavy(f, id, w_.items) ? w_.light_ns * w_.skew : w_.light_ns; }
+  double one_way() const { return lat_.ping_pong / 2; }
+  double barrier_ns() const { return 2 * std::ceil(std::log2(std::max(2, p_))) * one_way(); }
+  Rank& at(int r) { return ranks_[static_cast<std::size_t>(r)]; }
+
+  // A round trip to `target` issued at t: served when it arrives, or at the target's next item boundary when
+  // the transport needs target progress and the target is busy; atomics also queue at the target.
+  double op(double t, int target, double latency, bool atomic) {
+    ++remote_ops_;
+    Rank& v = at(target);
+    const double arrive = t + latency / 2;
+    double start = arrive;
+    if (lat_.needs_target_progress && v.busy && v.busy_until > arrive) start = v.busy_until;
+    if (atomic) {
+      start = std::max(start, v.server_free);
+      v.server_free = start + lat_.atomic_service;
+    }
+    return start + latency / 2;
+  }
+  void at_time(double t, int r) { events_.emplace(t, seq_++, r); }
+
+  double static_frame() {
+    double worst = 0;
+    for (int r = 0; r < p_; ++r) {
+      double t = 0;
+      at(r).executed.clear();
+      for (ItemId id = static_cast<ItemId>(r); id < w_.items; id += static_cast<ItemId>(p_)) {
+        t += cost(frame_, id);
+        at(r).executed.push_back(id);
+      }
+      worst = std::max(worst, t);
+    }
+    return worst;
+  }
+
+  double event_frame() {
+    active_ = p_;
+    next_item_ = 0;
+    for (int r = 0; r < p_; ++r) {
+      Rank& k = at(r);
+      if (s_ == Scheduler::kRma || s_ == Scheduler::kRequest) {
+        if (frame_ > 0) k.list = k.executed;  // §4.2.1: next frame's list is what the rank processed
+      }
+      k.executed.clear();
+      k.front = 0;
+      k.end = static_cast<std::uint32_t>(k.list.size());
+      k.busy = k.locked = false;
+      k.busy_until = k.server_free = k.finish = 0;
+      k.failed_rounds = 0;
+      k.pending.clear();
+      k.step = Step::kOwner;
+      at_time(0, r);
+    }
+    std::uint64_t n = 0;
+    while (!events_.empty()) {
+      const auto [t, seq, r] = events_.top();
+      events_.pop();
+      if (++n > kEventLimit) throw std::runtime_error("simulator: event limit reached (a livelock in the model)");
+      s_ == Scheduler::kCentral ? central_step(t, r) : stealing_step(t, r);
+    }
+    double worst = 0;
+    for (int r = 0; r < p_; ++r) worst = std::max(worst, at(r).finish);
+    return worst;
+  }
+
+  void central_step(double t, int r) {
+    Rank& k = at(r);
+    const std::uint64_t grain = std::max<std::uint64_t>(1, w_.items / (100ull * static_cast<std::uint64_t>(p_)));
+    const double c = op(t, 0, lat_.fetch_op, true);
+    const std::uint64_t s = next_item_;
+    next_item_ += grain;
+    if (s >= w_.items) {
+      k.busy = false;
+      k.finish = c;
+      return;
+    }
+    double end = c;
+    for (std::uint64_t id = s; id < std::min<std::uint64_t>(s + grain, w_.items); ++id) {
+      end += cost(frame_, static_cast<ItemId>(id));
+      k.executed.push_back(static_cast<ItemId>(id));
+    }
+    k.busy = true;  // no MPI call inside a chunk: the home is served between chunks
+    k.busy_until = end;
+    at_time(end, r);
+  }
+
+  // The request owner's poll at an item boundary (t): answers the requests that have arrived; with `all` (it
+  // has just run out of work) also those still in flight, empty, as they arrive.
+  double answer_pending(double t, Rank& victim, bool all) {
+    for (auto it = victim.pending.begin(); it != victim.pending.end();) {
+      if (it->second > t && !all) {
+        ++it;
+        continue;
+      }
+      Rank& thief = at(it->first);
+      thief.share.clear();
+      const std::uint32_t remaining = victim.end - victim.front;
+      if (victim.busy && remaining >= 2) {
+        const std::uint32_t keep = static_cast<std::uint32_t>(items_left_to_victim(remaining));
+        thief.share.assign(victim.list.begin() + victim.front + keep, victim.list.begin() + victim.end);
+        victim.end = victim.front + keep;
+        t = op(t, 0, lat_.fetch_op, true);  // A1 on the thief's behalf, paid by the victim
+        ++active_;
+      }
+      at_time(std::max(t, it->second) + one_way(), it->first);
+      it = victim.pending.erase(it);
+    }
+    return t;
+  }
+
+  void become_idle(double t, int r) {
+    Rank& k = at(r);
+    k.busy = false;
+    if (s_ == Scheduler::kRequest) t = answer_pending(t, k, true);
+    --active_;  // A2
+    k.step = Step::kRoundStart;
+    at_time(op(t, 0, lat_.fetch_op, true), r);
+  }
+
+  void stealing_step(double t, int r) {
+    Rank& k = at(r);
+    switch (k.step) {
+      case Step::kOwner: {
+        if (s_ == Scheduler::kRequest && !k.pending.empty()) t = answer_pending(t, k, false);
+        if (k.front >= k.end) return become_idle(t, r);
+        const ItemId id = k.list[k.front++];
+        k.executed.push_back(id);
+        const double overhead = s_ == Scheduler::kRma
+                                    ? lat_.claim + (lat_.needs_target_progress ? lat_.progress_call : 0)
+                                    : lat_.poll;
+        k.busy = true;
+        k.busy_until = t + overhead + cost(frame_, id);
+        return at_time(k.busy_until, r);
+      }
+      case Step::kRoundStart: {
+        const double c = op(t, 0, lat_.fetch_op, true);  // A3
+        if (active_ == 0) {
+          k.step = Step::kDone;
+          k.finish = c;
+          return;
+        }
+        k.victim_index = 0;
+        if (s_ == Scheduler::kRequest) return send_request(c, r);
+        k.step = Step::kTryVictim;
+        return at_time(c, r);
+      }
+      case Step::kTryVictim: return try_victim(t, r);
+      case Step::kT1: {
+        k.front_read = victim(k).front;  // T1
+        k.step = Step::kT2;
+        return at_time(op(t, current(k), lat_.get, false), r);
+      }
+      case Step::kT2: {
+        Rank& v = victim(k);
+        const std::uint32_t end = v.end;  // T2
+        if (k.front_read >= end) {
+          v.locked = false;  // L3
+          const double c = op(t, current(k), lat_.fetch_op, true);
+          ++k.victim_index;
+          k.step = Step::kTryVictim;
+          return at_time(c, r);
+        }
+        k.mid = k.front_read + static_cast<std::uint32_t>(items_left_to_victim(end - k.front_read));
+        k.old_end = end;
+        double c = op(t, current(k), lat_.get, false);  // the entry count
+        c = op(c, current(k), lat_.get, false);          // the entries
+        ++active_;                                       // A1
+        c = op(c, 0, lat_.fetch_op, true);
+        k.step = Step::kT3;
+        return at_time(c, r);
+      }
+      case Step::kT3: {
+        Rank& v = victim(k);
+        const double c = op(t, current(k), lat_.put, false);
+        v.end = k.mid;  // T3: from here the victim claims no item at or past mid
+        const std::uint32_t first = defect_ == Defect::kSkipReread ? k.mid : std::max(k.mid, v.front);  // T5's re-read
+        k.share.assign(v.list.begin() + std::min(first, k.old_end), v.list.begin() + k.old_end);
+        k.step = Step::kT4;
+        return at_time(c, r);
+      }
+      case Step::kT4: {
+        double c = op(t, current(k), lat_.get, false);  // T4
+        c = op(c, current(k), lat_.get, false);          // T5
+        victim(k).locked = false;                        // L3
+        k.step = Step::kInstall;
+        return at_time(op(c, current(k), lat_.fetch_op, true), r);
+      }
+      case Step::kInstall: return install(t, r);
+      case Step::kAwaitReply: {
+        if (!k.share.empty()) {
+          steal_ns_ += t - k.steal_start;
+          return take_share(t, r);
+        }
+        k.step = Step::kRoundStart;
+        return at_time(t + backoff(k), r);
+      }
+      case Step::kDone: return;
+    }
+  }
+
+  int current(const Rank& k) const { return k.victims[k.victim_index]; }
+  Rank& victim(const Rank& k) { return at(current(k)); }
+  double backoff(Rank& k) {
+    ++k.failed_rounds;
+    return k.failed_rounds < 4 ? kYieldNs : 1000.0 * (1u << std::min<std::uint32_t>(k.failed_rounds - 4, 8));
+  }
+
+  void try_victim(double t, int r) {
+    Rank& k = at(r);
+    if (k.victim_index >= k.victims.size()) {
+      k.step = Step::kRoundStart;
+      return at_time(t + backoff(k), r);
+    }
+    ++attempts_;
+    const double c = op(t, current(k), lat_.fetch_op, true);  // L1
+    if (victim(k).locked) {
+      ++k.victim_index;
+      return at_time(c, r);
+    }
+    victim(k).locked = true;  // L2
+    k.steal_start = t;
+    k.step = Step::kT1;
+    at_time(op(c, current(k), lat_.cas, true), r);
+  }
+
+  void install(double t, int r) {
+    Rank& k = at(r);
+    if (k.share.empty()) {  // every planned item was claimed by the victim first: A2, next victim
+      --active_;
+      ++k.victim_index;
+      k.step = Step::kTryVictim;
+      return at_time(op(t, 0, lat_.fetch_op, true), r);
+    }
+    if (k.locked) return at_time(t + kInstallRetryNs, r);  // a thief holds our LockList: install waits (L2)
+    steal_ns_ += t - k.steal_start;
+    take_share(t, r);
+  }
+
+  void take_share(double t, int r) {
+    Rank& k = at(r);
+    ++steals_;
+    k.list = k.share;
+    k.share.clear();
+    k.front = 0;
+    k.end = static_cast<std::uint32_t>(k.list.size());
+    k.failed_rounds = 0;
+    k.step = Step::kOwner;
+    at_time(t, r);
+  }
+
+  void send_request(double t, int r) {
+    Rank& k = at(r);
+    ++attempts_;
+    k.share.clear();
+    const int v = k.victims[k.next_request++ % k.victims.size()];
+    k.steal_start = t;
+    k.step = Step::kAwaitReply;
+    if (at(v).busy) {
+      at(v).pending.emplace_back(r, t + one_way());  // answered at the victim's next item boundary
+    } else {
+      at_time(t + 2 * one_way(), r);  // an idle victim answers at once, empty
+    }
+  }
+
+  void audit(Result& res) {
+    std::vector<std::uint32_t> counts(w_.items, 0);
+    for (Rank& k : ranks_) {
+      for (ItemId id : k.executed) ++counts[id];
+    }
+    for (ItemId id = 0; id < w_.items; ++id) {
+      if (counts[id] != 1 && res.exactly_once) {
+        res.exactly_once = false;
+        res.audit_failure = "frame " + std::to_string(frame_) + ": item " + std::to_string(id) + " executed " +
+                            std::to_string(counts[id]) + " times";
+      }
+    }
+  }
+
+  Scheduler s_;
+  int p_;
+  Workload w_;
+  Latencies lat_;
+  Defect defect_;
+  std::vector<Rank> ranks_;
+  int frame_ = 0;
+  std::int64_t active_ = 0;
+  std::uint64_t next_item_ = 0, seq_ = 0, steals_ = 0, attempts_ = 0, remote_ops_ = 0;
+  double steal_ns_ = 0;
+  std::priority_queue<std::tuple<double, std::uint64_t, int>, std::vector<std::tuple<double, std::uint64_t, int>>,
+                      std::greater<>> events_;
+};
+
+}  // namespace
+
+Result simulate(Scheduler s, int ranks, const Workload& w, const Latencies& lat, std::uint64_t seed, Defect defect) {
+  return Model(s, ranks, w, lat, seed, defect).run();
+}
+
+}  // namespace frontsteal::mpi::sim

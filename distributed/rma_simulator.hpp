@@ -1,0 +1,88 @@
+// rma_simulator.hpp — SIMULATED: a discrete-event model of frontsteal-mpi's four schedulers (rma stealing,
+// request-based stealing, central counter, static round robin) at rank counts this machine cannot run
+// (16, 64, 256), driven by latencies measured with frontsteal-mpi --calibrate. Every number it prints is a
+// prediction of the model, labelled SIMULATED with the latencies used; none is a measurement.
+//
+// THE MODEL (one event per item boundary and per one-sided operation, processed in time order):
+//   items       the synthetic skewed workload of frontsteal-mpi (synthetic_cost.hpp): light `light_ns`, the
+//               moving heavy fifth `skew` x; lists carry over between frames (§4.2.1) as in frontsteal-mpi.
+//   rma         the owner pays `claim` per item (+ `progress_call` when the transport needs target progress);
+//               a thief runs the protocol's operations in order — L1 fetch-op, L2 CAS, T1 get, T2 get, the
+//               entry count and the entries (two gets), A1 fetch-op on rank 0, T3 put, T4 get, T5 get, L3
+//               fetch-op — each a round trip of its calibrated latency. The victim's End drops when T3
+//               completes; items the victim claimed past mid before then stay with it (the T5 re-read).
+//   request     the owner pays `poll` per item; a request travels half a ping-pong, waits for the victim's next
+//               item boundary (an idle victim answers at once), the reply (second half of the list, and A1 on
+//               rank 0 paid by the victim) travels the other half.
+//   central     a fetch-and-op on rank 0 per grain of N/(100P) items.
+//   static      round robin, no communication.
+//   termination A3 (a fetch-op read of rank 0's count) before every round of steal attempts; backoff as the
+//               real idle loop (yield x3, then 1, 2, 4 ... 256 us).
+//   contention  every atomic (fetch-op, CAS) on a rank's words occupies that rank for `atomic_service`
+//               (one at a time): the central counter and the active count queue up at rank 0.
+//   progress    with needs_target_progress (TCP without asynchronous progress) an operation aimed at a busy
+//               rank is served only at that rank's next item boundary (the owner's progress call,
+//               owner_progress.hpp); an idle rank is inside MPI calls and serves at once.
+//   frame end   a barrier: 2 log2(P) one-way messages.
+// NOT MODELLED: network bandwidth and topology (every pair is the calibrated pair), the OS scheduler (one
+// rank per core), cache effects of stolen items, a rank's own contention between its thief and owner roles.
+//
+// AUDIT. Every simulated frame checks that each item ran exactly once; Defect::kSkipReread (the thief keeps
+// [mid, end) without the T5 re-read) must be caught — the model's negative control.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "reporting/json.hpp"
+
+namespace frontsteal::mpi::sim {
+
+// Nanoseconds. A one-sided operation's latency is its round trip (operation + MPI_Win_flush) to an attentive
+// target, as --calibrate measures it.
+struct Latencies {
+  std::string source;             // where the numbers come from (file, transport)
+  double get = 0, put = 0, cas = 0, fetch_op = 0;
+  double ping_pong = 0;           // a 4-byte MPI_Send/MPI_Recv round trip
+  double claim = 0;               // the rma owner's O1-O4
+  double poll = 0;                // the request owner's MPI_Iprobe
+  double progress_call = 0;       // the rma owner's progress call (owner_progress.hpp)
+  double atomic_service = 0;      // time one atomic holds its home rank (see contention above)
+  bool needs_target_progress = false;
+};
+
+// Reads frontsteal-mpi --calibrate --json output (contents "calibration"); throws naming the file and the
+// operation it lacks. atomic_service = max(fetch_op - get, 50 ns): what an atomic costs beyond a plain get.
+Latencies latencies_from_calibration(const std::string& path);
+
+enum class Scheduler : std::uint8_t { kRma, kRequest, kCentral, kStatic };
+const char* to_string(Scheduler s) noexcept;
+
+enum class Defect : std::uint8_t { kNone, kSkipReread };
+
+struct Workload {
+  std::uint32_t items = 200000;
+  double light_ns = 2000;
+  std::uint32_t skew = 20;
+  int frames = 5;
+};
+
+struct Result {
+  Scheduler scheduler = Scheduler::kStatic;
+  int ranks = 0;
+  double time_ns = 0;          // all frames
+  double work_ns = 0;          // sum of item costs, all frames
+  double efficiency = 0;       // work / (ranks x time)
+  std::uint64_t steals = 0, steal_attempts = 0, remote_operations = 0;
+  double mean_steal_ns = 0;
+  bool exactly_once = true;    // the audit
+  std::string audit_failure;   // the first failure, when not
+};
+
+Result simulate(Scheduler s, int ranks, const Workload& w, const Latencies& lat, std::uint64_t seed = 1,
+                Defect defect = Defect::kNone);
+
+report::Json latencies_json(const Latencies& lat);
+
+}  // namespace frontsteal::mpi::sim

@@ -1,0 +1,89 @@
+// frontsteal-mpi-simulate — SIMULATED efficiency of rma stealing, request-based stealing, the central counter
+// and static round robin at 16, 64 and 256 ranks (and 2, 4 to set beside frontsteal-mpi's measurements),
+// from latencies that frontsteal-mpi --calibrate --json measured (rma_simulator.hpp: the model and what it
+// leaves out). Prints a table per calibration; --json and --markdown write the same, labelled SIMULATED.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "distributed/rma_simulator.hpp"
+#include "reporting/command_line.hpp"
+#include "reporting/results_dir.hpp"
+#include "reporting/table.hpp"
+
+#ifndef FRONTSTEAL_GIT_COMMIT
+#define FRONTSTEAL_GIT_COMMIT "unknown"
+#endif
+
+namespace sim = frontsteal::mpi::sim;
+namespace report = frontsteal::report;
+
+int main(int argc, char** argv) {
+  std::vector<std::string> calibrations;
+  std::vector<int> ranks{2, 4, 16, 64, 256};
+  sim::Workload w;
+  std::string json, markdown, defect = "none";
+  report::CommandLine cli("frontsteal-mpi-simulate",
+                          "usage: frontsteal-mpi-simulate --calibration FILE[,FILE...] [options]\n\nSIMULATED: "
+                          "predicts each scheduler's efficiency (work / (ranks x time)) with a discrete-event model "
+                          "driven by measured latencies (frontsteal-mpi --calibrate --json).",
+                          "\nExit status: 0; 1 the model's exactly-once audit failed; 2 bad command line.");
+  cli.app().add_option("--calibration", calibrations, "calibration JSON files (comma list)")->delimiter(',')->required();
+  cli.app().add_option("--ranks", ranks, "rank counts (comma list)")->delimiter(',')->check(CLI::Range(2, 4096))
+      ->capture_default_str();
+  cli.option("--items", w.items, "items per frame")->check(CLI::Range(16u, 10000000u));
+  cli.option("--work-ns", w.light_ns, "a light item's cost, ns")->check(CLI::Range(0.0, 1e9));
+  cli.option("--skew", w.skew, "the moving heavy fifth costs K x")->check(CLI::Range(1u, 10000u));
+  cli.option("--frames", w.frames, "frames (lists carry over)")->check(CLI::Range(1, 1000));
+  cli.option("--json", json, "also write the results as JSON");
+  cli.option("--markdown", markdown, "also write the results as markdown");
+  cli.option("--plant-defect", defect, "negative control: none | skip-reread (rma thieves keep [mid, end))")
+      ->check(CLI::IsMember({"none", "skip-reread"}));
+  cli.parse(argc, argv);
+  try {
+    report::Table t({{"latencies", "latencies", false}, {"scheduler", "scheduler", false}, {"ranks", "ranks"},
+                     {"efficiency", "efficiency (SIMULATED)"}, {"frame_ms", "ms/frame"}, {"steals", "steals"},
+                     {"mean_steal_us", "mean steal us"}, {"remote_ops", "remote ops"}, {"exactly_once", "audit", false}});
+    report::Json doc = report::document("frontsteal-mpi-simulate", 1, "simulated", FRONTSTEAL_GIT_COMMIT);
+    doc["simulated"] = true;
+    doc["workload"] = {{"items", w.items}, {"light_ns", w.light_ns}, {"skew", w.skew}, {"frames", w.frames}};
+    doc["latencies"] = report::Json::array();
+    bool audit_ok = true;
+    for (const std::string& path : calibrations) {
+      const sim::Latencies lat = sim::latencies_from_calibration(path);
+      doc["latencies"].push_back(sim::latencies_json(lat));
+      const std::string label = lat.needs_target_progress ? "tcp" : "shm";
+      for (sim::Scheduler s : {sim::Scheduler::kRma, sim::Scheduler::kRequest, sim::Scheduler::kCentral,
+                               sim::Scheduler::kStatic}) {
+        for (int p : ranks) {
+          const sim::Result r = sim::simulate(s, p, w, lat, 1,
+                                              defect == "skip-reread" ? sim::Defect::kSkipReread : sim::Defect::kNone);
+          if (!r.exactly_once) {
+            std::fprintf(stderr, "frontsteal-mpi-simulate: MODEL AUDIT FAILED: %s, %d ranks, %s: %s\n",
+                         sim::to_string(s), p, label.c_str(), r.audit_failure.c_str());
+            audit_ok = false;
+          }
+          t.add_row({label, sim::to_string(s), p, report::Cell::fixed(r.efficiency, 3),
+                     report::Cell::fixed(r.time_ns / w.frames / 1e6, 3), r.steals, report::Cell::fixed(r.mean_steal_ns / 1e3, 1),
+                     r.remote_operations, r.exactly_once ? "passed" : "FAILED"});
+        }
+      }
+    }
+    doc["rows"] = t.json();
+    std::string latencies_text;
+    for (const report::Json& l : doc["latencies"]) latencies_text += "  " + l.dump() + "\n";
+    const std::string title = "SIMULATED (a discrete-event model, not a measurement): " + std::to_string(w.items) +
+                              " items/frame, light " + report::fixed_text(w.light_ns, 0) + " ns, heavy fifth x" +
+                              std::to_string(w.skew) + ", " + std::to_string(w.frames) + " frames\nlatencies used (ns):\n";
+    std::printf("%s%s%s", title.c_str(), latencies_text.c_str(), t.terminal().c_str());
+    if (!json.empty()) report::write_atomically(json, doc.dump(2) + "\n");
+    if (!markdown.empty()) {
+      report::write_atomically(markdown, "# " + title + "\n```\n" + latencies_text + "```\n\n" + t.markdown());
+    }
+    return audit_ok ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "frontsteal-mpi-simulate: %s\n", e.what());
+    return 1;
+  }
+}
