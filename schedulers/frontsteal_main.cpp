@@ -275,6 +275,147 @@ std::string fixed(double v, int digits) { return report::fixed_text(v, digits); 
 // which we do not create.
 thread_local int t_pinned_as = -1;
 
+// The scene loaded and prepared, its camera path, and the hints for the spatial partitions (patch centres,
+// and the cost estimate of the path's first, overview, view). Exits 2 when the scene cannot be loaded or is
+// empty (before any measurement: nothing to clean up).
+struct PreparedScene {
+  Workload wl;
+  ts::DenseRegion dense;
+  sc::WorkloadHints hints;
+};
+
+PreparedScene prepare_scene(const Options& o, unsigned cores) {
+  PreparedScene scene;
+  Workload& wl = scene.wl;
+  const auto load_start = std::chrono::steady_clock::now();
+  try {
+    wl.model = ts::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
+  } catch (const std::exception& e) {
+    std::cerr << kProgram << ": cannot load scene '" << o.scene << "': " << e.what() << '\n';
+    std::exit(2);
+  }
+  const auto n = static_cast<fs::ItemId>(wl.model.surfaces.size());
+  if (n == 0) {
+    std::cerr << kProgram << ": scene '" << o.scene << "' has no surfaces\n";
+    std::exit(2);
+  }
+  for (const ts::Surface& s : wl.model.surfaces) wl.prepared.push_back(ts::prepare_surface(s));
+  wl.buffers.resize(n);
+  wl.settings.pixel_tolerance = o.tolerance;
+  wl.settings.planted_defect = o.planted_defect;
+  const ts::Box box = ts::model_box(wl.model);
+  scene.dense = ts::densest_region(wl.model);
+  for (int f = 0; f < o.frames; ++f) {
+    // orbit-then-zoom is camera_on_path itself: the same views as before --path existed.
+    wl.cameras.push_back(ts::camera_on(o.path, box, f, o.frames, o.width, o.height, &scene.dense));
+    wl.frusta.push_back(ts::Frustum::of(wl.cameras.back()));
+  }
+  for (const ts::PreparedSurface& p : wl.prepared) {
+    const glm::dvec3 c = p.box.centre();
+    scene.hints.centres.push_back({c.x, c.y, c.z});
+    const ts::SurfacePlan plan = ts::plan_surface(p, wl.cameras[0], wl.frusta[0], wl.settings);
+    scene.hints.costs.push_back(std::max(1.0, ts::estimate_cost(p, plan, wl.settings)));
+  }
+  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+  if (!o.quiet) {
+    std::fprintf(stderr, "frontsteal: scene %s: %u surfaces, %d frames (path %s), %s, %u hardware threads; "
+                 "prepared in %.2f s\n", o.scene.c_str(), n, o.frames, ts::name(o.path), cpu_model().c_str(), cores,
+                 load_s);
+  }
+  return scene;
+}
+
+// Tessellates surface `id` for frame `f` with worker w's scratch into the surface's own buffer, and keeps per
+// surface what the audits need: its triangle count, whether the tessellation's own audit (tiling, area,
+// tracing: surface_tessellator.hpp, step 6) failed, and whether the step cap held the deviation bound back.
+class FrameTessellator {
+ public:
+  FrameTessellator(Workload& wl, fs::WorkerId max_workers)
+      : wl_(wl), scratch_(std::max<std::size_t>(1, max_workers)), triangles_(wl.model.surfaces.size(), 0),
+        inconsistent_(wl.model.surfaces.size(), 0), capped_(wl.model.surfaces.size(), 0) {}
+
+  void run(int f, fs::ItemId id, fs::WorkerId w) {
+    const ts::SurfaceResult r = ts::tessellate_surface(wl_.prepared[id], wl_.cameras[f], wl_.frusta[f], wl_.settings,
+                                                       scratch_[w], wl_.buffers[id]);
+    triangles_[id] = static_cast<std::uint32_t>(r.triangles);
+    inconsistent_[id] = r.inconsistencies() > 0;
+    capped_[id] = r.capped;
+  }
+  std::uint64_t frame_triangles() const {
+    std::uint64_t t = 0;
+    for (auto x : triangles_) t += x;
+    return t;
+  }
+  std::uint64_t count_inconsistent() const { return count(inconsistent_); }
+  std::uint64_t count_capped() const { return count(capped_); }
+  std::string first_inconsistent() const {
+    const auto it = std::find(inconsistent_.begin(), inconsistent_.end(), std::uint8_t{1});
+    return it == inconsistent_.end() ? std::string()
+                                     : wl_.model.surfaces[static_cast<std::size_t>(it - inconsistent_.begin())].name;
+  }
+
+ private:
+  static std::uint64_t count(const std::vector<std::uint8_t>& flags) {
+    return static_cast<std::uint64_t>(std::count(flags.begin(), flags.end(), std::uint8_t{1}));
+  }
+  Workload& wl_;
+  std::vector<ts::TessellationScratch> scratch_;
+  std::vector<std::uint32_t> triangles_;
+  std::vector<std::uint8_t> inconsistent_, capped_;
+};
+
+// The serial warm-up pass: the reference triangle counts (and audit counts) per frame into `wl`, and per frame
+// and surface the measured time (ns) and the cost estimate, for the round-robin cost spread
+// (round_robin_spread.hpp).
+struct WarmUp {
+  std::vector<std::vector<double>> item_ns, item_estimate;
+  double seconds = 0;  // the pass's wall time: about T1
+};
+
+WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess) {
+  const auto n = wl.model.surfaces.size();
+  WarmUp w{std::vector<std::vector<double>>(o.frames, std::vector<double>(n)),
+           std::vector<std::vector<double>>(o.frames, std::vector<double>(n)), 0};
+  for (int f = 0; f < o.frames; ++f) {
+    for (fs::ItemId id = 0; id < n; ++id) {
+      w.item_estimate[f][id] = ts::estimate_cost(
+          wl.prepared[id], ts::plan_surface(wl.prepared[id], wl.cameras[f], wl.frusta[f], wl.settings), wl.settings);
+    }
+  }
+  const auto warm_start = std::chrono::steady_clock::now();
+  for (int f = 0; f < o.frames; ++f) {
+    for (fs::ItemId id = 0; id < n; ++id) {
+      const auto t0 = std::chrono::steady_clock::now();
+      tess.run(f, id, 0);
+      w.item_ns[f][id] = static_cast<double>(
+          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+    }
+    wl.serial_triangles.push_back(tess.frame_triangles());
+    wl.serial_inconsistencies.push_back(tess.count_inconsistent());
+    wl.serial_capped.push_back(tess.count_capped());
+    if (wl.serial_inconsistencies.back() > 0) {
+      std::cerr << kProgram << ": frame " << f << ": " << wl.serial_inconsistencies.back()
+                << " surfaces fail the tessellation audit (first: " << tess.first_inconsistent() << ")\n";
+    }
+  }
+  w.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - warm_start).count();
+  return w;
+}
+
+// --repeats auto: one round of repeats costs about T1 for the serial loop plus T1 / min(P, cores) per
+// scheduler and P (plus the 5 ms settling pause); the warm-up pass gives T1. Ten repeats when they fit in
+// the budget (the bootstrap interval of a median is informative from about ten pairs), else as many as
+// fit, but never fewer than 5, the count earlier results were measured with. Sets o.repeats; returns the note.
+std::string choose_repeats(Options& o, double warm_s, unsigned cores) {
+  double round_s = warm_s;
+  for (fs::WorkerId p : o.threads) {
+    round_s += o.schedulers.size() * (warm_s / std::min<double>(p, cores) + 0.005);
+  }
+  const int fit = static_cast<int>(o.budget_s / std::max(round_s, 1e-9));
+  o.repeats = std::clamp(fit, 5, 10);
+  return "auto: ~" + fixed(round_s, 1) + " s per round predicted, budget " + fixed(o.budget_s, 0) + " s";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -290,75 +431,13 @@ int main(int argc, char** argv) {
   auto sample = [&] { return nz::sample_now(co_runner.pid()); };
 
   // ---- the workload -------------------------------------------------------------------------------------
-  Workload wl;
-  const auto load_start = std::chrono::steady_clock::now();
-  try {
-    wl.model = ts::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
-  } catch (const std::exception& e) {
-    std::cerr << kProgram << ": cannot load scene '" << o.scene << "': " << e.what() << '\n';
-    return 2;
-  }
+  PreparedScene scene = prepare_scene(o, cores);
+  Workload& wl = scene.wl;
+  const ts::DenseRegion& dense = scene.dense;
+  const sc::WorkloadHints& hints = scene.hints;
   const auto n = static_cast<fs::ItemId>(wl.model.surfaces.size());
-  if (n == 0) {
-    std::cerr << kProgram << ": scene '" << o.scene << "' has no surfaces\n";
-    return 2;
-  }
-  for (const ts::Surface& s : wl.model.surfaces) wl.prepared.push_back(ts::prepare_surface(s));
-  wl.buffers.resize(n);
-  wl.settings.pixel_tolerance = o.tolerance;
-  wl.settings.planted_defect = o.planted_defect;
-  const ts::Box box = ts::model_box(wl.model);
-  const ts::DenseRegion dense = ts::densest_region(wl.model);
-  for (int f = 0; f < o.frames; ++f) {
-    // orbit-then-zoom is camera_on_path itself: the same views as before --path existed.
-    wl.cameras.push_back(ts::camera_on(o.path, box, f, o.frames, o.width, o.height, &dense));
-    wl.frusta.push_back(ts::Frustum::of(wl.cameras.back()));
-  }
-  // Hints for the spatial partitions: patch centres, and the cost estimate of the path's first (overview) view.
-  sc::WorkloadHints hints;
-  {
-    const ts::TessellationSettings& st = wl.settings;
-    for (const ts::PreparedSurface& p : wl.prepared) {
-      const glm::dvec3 c = p.box.centre();
-      hints.centres.push_back({c.x, c.y, c.z});
-      const ts::SurfacePlan plan = ts::plan_surface(p, wl.cameras[0], wl.frusta[0], st);
-      hints.costs.push_back(std::max(1.0, ts::estimate_cost(p, plan, st)));
-    }
-  }
-  const double load_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
-  if (!o.quiet) {
-    std::fprintf(stderr, "frontsteal: scene %s: %u surfaces, %d frames (path %s), %s, %u hardware threads; "
-                 "prepared in %.2f s\n", o.scene.c_str(), n, o.frames, ts::name(o.path), cpu_model().c_str(), cores,
-                 load_s);
-  }
 
-  // Tessellates surface `id` for frame `f`, with worker w's scratch; returns its triangle count.
-  std::vector<ts::TessellationScratch> scratch(
-      std::max<std::size_t>(1, *std::max_element(o.threads.begin(), o.threads.end())));
-  std::vector<std::uint32_t> triangles(n, 0);
-  // Per surface, this frame: the tessellation's own audit (tiling, area, tracing: surface_tessellator.hpp,
-  // step 6) failed, and the step cap held the deviation bound back.
-  std::vector<std::uint8_t> inconsistent(n, 0), capped(n, 0);
-  auto tessellate = [&](int f, fs::ItemId id, fs::WorkerId w) {
-    const ts::SurfaceResult r = ts::tessellate_surface(wl.prepared[id], wl.cameras[f], wl.frusta[f], wl.settings,
-                                                       scratch[w], wl.buffers[id]);
-    triangles[id] = static_cast<std::uint32_t>(r.triangles);
-    inconsistent[id] = r.inconsistencies() > 0;
-    capped[id] = r.capped;
-  };
-  auto frame_triangles = [&] {
-    std::uint64_t t = 0;
-    for (auto x : triangles) t += x;
-    return t;
-  };
-  auto frame_count = [](const std::vector<std::uint8_t>& flags) {
-    return static_cast<std::uint64_t>(std::count(flags.begin(), flags.end(), std::uint8_t{1}));
-  };
-  auto first_inconsistent = [&] {
-    const auto it = std::find(inconsistent.begin(), inconsistent.end(), std::uint8_t{1});
-    return it == inconsistent.end() ? std::string() : wl.model.surfaces[static_cast<std::size_t>(it - inconsistent.begin())].name;
-  };
+  FrameTessellator tess(wl, *std::max_element(o.threads.begin(), o.threads.end()));
 
   auto total_steps = [&] {
     return 1 + static_cast<std::size_t>(std::max(o.repeats, 1)) * (1 + o.threads.size() * o.schedulers.size());
@@ -368,45 +447,13 @@ int main(int argc, char** argv) {
   // ---- the serial reference (T1): a plain loop on this thread ---------------------------------------------
   std::vector<double> serial_path_ms;
   std::vector<std::vector<double>> serial_frame_ms;
-  // Per frame and surface: the warm-up pass's measured time (ns) and the cost estimate, for the round-robin
-  // cost spread (round_robin_spread.hpp).
-  std::vector<std::vector<double>> item_ns(o.frames, std::vector<double>(n)), item_estimate(o.frames, std::vector<double>(n));
-  for (int f = 0; f < o.frames; ++f) {
-    for (fs::ItemId id = 0; id < n; ++id) {
-      item_estimate[f][id] = ts::estimate_cost(wl.prepared[id], ts::plan_surface(wl.prepared[id], wl.cameras[f], wl.frusta[f], wl.settings), wl.settings);
-    }
-  }
-  const auto warm_start = std::chrono::steady_clock::now();
-  for (int f = 0; f < o.frames; ++f) {  // warm-up pass; also the reference triangle counts and per-item times
-    for (fs::ItemId id = 0; id < n; ++id) {
-      const auto t0 = std::chrono::steady_clock::now();
-      tessellate(f, id, 0);
-      item_ns[f][id] = static_cast<double>(
-          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
-    }
-    wl.serial_triangles.push_back(frame_triangles());
-    wl.serial_inconsistencies.push_back(frame_count(inconsistent));
-    wl.serial_capped.push_back(frame_count(capped));
-    if (wl.serial_inconsistencies.back() > 0) {
-      std::cerr << kProgram << ": frame " << f << ": " << wl.serial_inconsistencies.back()
-                << " surfaces fail the tessellation audit (first: " << first_inconsistent() << ")\n";
-    }
-  }
-  const double warm_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - warm_start).count();
-  // --repeats auto: one round of repeats costs about T1 for the serial loop plus T1 / min(P, cores) per
-  // scheduler and P (plus the 5 ms settling pause); the warm-up pass gives T1. Ten repeats when they fit in
-  // the budget (the bootstrap interval of a median is informative from about ten pairs), else as many as
-  // fit, but never fewer than 5, the count earlier results were measured with.
-  std::string repeats_note = "set by --repeats";
+  const WarmUp warm = warm_up(o, wl, tess);
+  const std::vector<std::vector<double>>& item_ns = warm.item_ns;
+  const std::vector<std::vector<double>>& item_estimate = warm.item_estimate;
   const bool auto_repeats = o.repeats == 0;
+  std::string repeats_note = "set by --repeats";
   if (auto_repeats) {
-    double round_s = warm_s;
-    for (fs::WorkerId p : o.threads) {
-      round_s += o.schedulers.size() * (warm_s / std::min<double>(p, cores) + 0.005);
-    }
-    const int fit = static_cast<int>(o.budget_s / std::max(round_s, 1e-9));
-    o.repeats = std::clamp(fit, 5, 10);
-    repeats_note = "auto: ~" + fixed(round_s, 1) + " s per round predicted, budget " + fixed(o.budget_s, 0) + " s";
+    repeats_note = choose_repeats(o, warm.seconds, cores);
     progress.set_total(total_steps());
   }
   progress.step("serial warm-up pass (reference triangle counts); " + std::to_string(o.repeats) + " repeats (" +
@@ -433,7 +480,7 @@ int main(int argc, char** argv) {
     const nz::ProcSample before = sample();
     for (int f = 0; f < o.frames; ++f) {
       const auto t0 = std::chrono::steady_clock::now();
-      for (fs::ItemId id = 0; id < n; ++id) tessellate(f, id, 0);
+      for (fs::ItemId id = 0; id < n; ++id) tess.run(f, id, 0);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       per_frame.push_back(ms);
       total += ms;
@@ -511,7 +558,7 @@ int main(int argc, char** argv) {
           t_pinned_as = static_cast<int>(w);
         }
         runs.record(id);
-        tessellate(f, id, w);
+        tess.run(f, id, w);
       };
       const fs::FrameStats& st = c.instance->run_frame(item);
       const double ms = static_cast<double>(st.wall_ns) / 1e6;
@@ -539,17 +586,17 @@ int main(int argc, char** argv) {
           c.first_problem = s.str();
         }
       }
-      if (const std::uint64_t bad = frame_count(inconsistent); bad > 0) {
+      if (const std::uint64_t bad = tess.count_inconsistent(); bad > 0) {
         c.tessellation_inconsistencies += bad;
         if (c.first_problem.empty()) {
           c.first_problem = "frame " + std::to_string(f) + ": " + std::to_string(bad) +
-                            " surfaces fail the tessellation audit (first: " + first_inconsistent() + ")";
+                            " surfaces fail the tessellation audit (first: " + tess.first_inconsistent() + ")";
         }
       }
-      if (frame_triangles() != wl.serial_triangles[f]) {
+      if (tess.frame_triangles() != wl.serial_triangles[f]) {
         ++c.triangle_mismatches;
         if (c.first_problem.empty()) {
-          c.first_problem = "frame " + std::to_string(f) + ": " + std::to_string(frame_triangles()) +
+          c.first_problem = "frame " + std::to_string(f) + ": " + std::to_string(tess.frame_triangles()) +
                             " triangles, serial loop made " + std::to_string(wl.serial_triangles[f]);
         }
       }
@@ -606,7 +653,7 @@ int main(int argc, char** argv) {
         pinning.pin_this_thread(w);
         t_pinned_as = static_cast<int>(w);
       }
-      tessellate(0, id, w);
+      tess.run(0, id, w);
     };
     c.instance->run_frame(warm);
     unpin_caller();
