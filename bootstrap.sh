@@ -45,6 +45,10 @@ packages=(
   # its test under a virtual X server (tests/render/view_xvfb_test.sh): Xvfb, xdotool for the input, Xlib for
   # the WM_DELETE_WINDOW sender (tests/render/x11_close_window.cpp)
   xvfb xdotool libx11-dev
+  # the distributed layer (distributed/, frontsteal-mpi and its ctest entries): Open MPI 4.1 (mpirun, mpicxx,
+  # MPI-3 one-sided communication). Optional at configure time; with MPICH instead, swap these two names for
+  # mpich libmpich-dev
+  openmpi-bin libopenmpi-dev
 )
 
 missing=()

@@ -93,10 +93,10 @@ void CommandLine::parse(int argc, char** argv) {
   try {
     app_.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
-    std::cout << app_.help();
+    if (speaks_) std::cout << app_.help();
     std::exit(0);
   } catch (const CLI::CallForAllHelp&) {
-    std::cout << app_.help("", CLI::AppFormatMode::All);
+    if (speaks_) std::cout << app_.help("", CLI::AppFormatMode::All);
     std::exit(0);
   } catch (const CLI::ParseError& e) {
     usage_error(e.what());
@@ -104,7 +104,7 @@ void CommandLine::parse(int argc, char** argv) {
 }
 
 void CommandLine::usage_error(const std::string& message) const {
-  std::cerr << program_ << ": " << message << "\n(run " << program_ << " --help for the options)\n";
+  if (speaks_) std::cerr << program_ << ": " << message << "\n(run " << program_ << " --help for the options)\n";
   std::exit(2);
 }
 

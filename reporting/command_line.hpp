@@ -41,6 +41,9 @@ class CommandLine {
 
   // Parses argv; --help: usage on stdout, exit 0; a mistake: message on stderr, exit 2.
   void parse(int argc, char** argv);
+  // Whether this process prints help and mistakes (it exits with the same status either way): under mpirun
+  // every rank parses the same command line and only rank 0 speaks.
+  void set_speaks(bool speaks) noexcept { speaks_ = speaks; }
 
   // A mistake found after parsing (two options that do not go together ...): message, exit 2.
   [[noreturn]] void usage_error(const std::string& message) const;
@@ -48,6 +51,7 @@ class CommandLine {
  private:
   std::string program_;
   CLI::App app_;
+  bool speaks_ = true;
 };
 
 // "WxH" → (W, H), each within [16, 16384]; throws CLI::ValidationError otherwise (for --size options).

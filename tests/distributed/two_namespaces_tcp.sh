@@ -1,0 +1,32 @@
+#!/bin/bash
+# two_namespaces_tcp.sh — frontsteal-mpi with its two ranks in two Linux network namespaces joined by a veth
+# pair (addresses of its own, 10.218.<pid-derived>.1/.2, no other network), launched by mpirun through an rsh
+# agent that enters the second namespace, with shared-memory transports off (--mca btl tcp,self, osc pt2pt) so
+# every byte between the ranks crosses TCP. The namespaces, the veth pair and the agent are removed by a trap,
+# on success, failure or interruption. Needs root and ip(8); otherwise exits 77 (ctest: skipped).
+#   two_namespaces_tcp.sh MPIEXEC FRONTSTEAL_MPI [program arguments...]
+set -u
+mpiexec=$1; prog=$2; shift 2
+[ "$(id -u)" -eq 0 ] && command -v ip > /dev/null || { echo "two_namespaces_tcp: needs root and ip(8): skipped"; exit 77; }
+tag=fs$$
+a=${tag}a; b=${tag}b
+net=10.218.$(( $$ % 250 + 1 ))
+agent=$(mktemp -t ${tag}-agent.XXXXXX)
+cleanup() {
+  ip netns del "$a" 2> /dev/null
+  ip netns del "$b" 2> /dev/null  # deleting a namespace removes its end of the veth pair, and so the pair
+  rm -f "$agent"
+}
+trap cleanup EXIT INT TERM
+ip netns add "$a" && ip netns add "$b" || { echo "two_namespaces_tcp: cannot create namespaces: skipped"; exit 77; }
+ip link add ${tag}va type veth peer name ${tag}vb || exit 1
+ip link set ${tag}va netns "$a" && ip link set ${tag}vb netns "$b" || exit 1
+ip -n "$a" addr add $net.1/24 dev ${tag}va && ip -n "$b" addr add $net.2/24 dev ${tag}vb || exit 1
+for ns in "$a" "$b"; do ip -n "$ns" link set lo up; done
+ip -n "$a" link set ${tag}va up && ip -n "$b" link set ${tag}vb up || exit 1
+printf '#!/bin/sh\n# rsh agent: "host command..." runs the command in namespace %s\nshift\nexec ip netns exec %s sh -c "$*"\n' "$b" "$b" > "$agent"
+chmod +x "$agent"
+echo "two_namespaces_tcp: rank 0 in $a ($net.1), rank 1 in $b ($net.2), TCP only"
+ip netns exec "$a" "$mpiexec" --host "$(hostname),$b" -np 2 --mca plm_rsh_agent "$agent" \
+  --mca oob_tcp_if_include $net.0/24 --mca btl_tcp_if_include $net.0/24 --mca btl tcp,self --mca pml ob1 \
+  --mca osc pt2pt --mca mpi_yield_when_idle 1 "$prog" "$@"
