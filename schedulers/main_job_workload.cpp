@@ -59,6 +59,8 @@ PreparedScene prepare_scene(const Options& o, unsigned cores) {
                  "prepared in %.2f s\n", o.scene.c_str(), n, o.frames, ts::name(o.path), fs::cpu_model().c_str(), cores,
                  load_s);
   }
+  return scene;
+}
 
 FrameTessellator::FrameTessellator(Workload& wl, WorkerId max_workers)
     : wl_(wl), scratch_(std::max<std::size_t>(1, max_workers)), triangles_(wl.model.surfaces.size(), 0),

@@ -12,6 +12,13 @@ using frontsteal::FrameStats;
 
 namespace {
 
+ExecutionAudit audit_of(std::uint64_t items, std::uint64_t lost = 0) {
+  ExecutionAudit a;
+  a.items = items;
+  a.lost = lost;
+  return a;
+}
+
 FrameStats two_workers(std::int64_t busy0, std::int64_t busy1) {
   FrameStats st;
   st.wall_ns = 4'000'000;
@@ -28,7 +35,7 @@ FrameStats two_workers(std::int64_t busy0, std::int64_t busy1) {
 TEST_CASE("a clean frame adds its totals and fails no audit", "[main-job]") {
   mj::Cell c;
   const FrameStats st = two_workers(3'000'000, 1'000'000);
-  const ExecutionAudit ok{.items = 8};
+  const ExecutionAudit ok = audit_of(8);
   const double ms = mj::account_frame(c, 0, {st, ok, 120, 0, ""}, 120);
   CHECK(ms == 4.0);
   CHECK(c.frames_run == 1);
@@ -44,10 +51,10 @@ TEST_CASE("a clean frame adds its totals and fails no audit", "[main-job]") {
 
 TEST_CASE("each audit is caught, and the first problem is kept with its frame", "[main-job][negative-control]") {
   const FrameStats st = two_workers(1, 1);
-  const ExecutionAudit ok{.items = 8};
+  const ExecutionAudit ok = audit_of(8);
   SECTION("an item lost") {
     mj::Cell c;
-    const ExecutionAudit lost{.items = 8, .lost = 1, .first_lost = {5}};
+    const ExecutionAudit lost = audit_of(8, 1);
     mj::account_frame(c, 3, {st, lost, 120, 0, ""}, 120);
     CHECK(c.audit_failures == 1);
     CHECK(c.failed());
