@@ -20,25 +20,15 @@
 #include <string>
 #include <vector>
 
-#include "core/cli_args.hpp"
 #include "core/paired_comparison.hpp"
 #include "core/stealing_scheduler.hpp"
+#include "reporting/command_line.hpp"
 #include "schedulers/noise_monitor.hpp"
 #include "schedulers/registry.hpp"
 
 namespace {
 
-constexpr std::string_view kProgram = "own_item_function";
-constexpr std::string_view kUsage =
-    "usage: own_item_function [options]\n"
-    "  Mandelbrot rows as frontsteal items: stealing/Fenced against queue-mutex.\n"
-    "  --threads P     workers (default 2)\n"
-    "  --rows N        items = image rows (default 256)\n"
-    "  --width W       points per row (default 256)\n"
-    "  --max-iter K    iteration bound per point (default 1000)\n"
-    "  --frames F      measured frames per scheduler, after one warm-up frame (default 15)\n"
-    "  --out FILE      also write every frame as CSV (scheduler,frame,wall_ns,steals)\n"
-    "  --help          this text\n";
+constexpr const char* kProgram = "own_item_function";
 
 struct Options {
   frontsteal::WorkerId threads = 2;
@@ -49,20 +39,20 @@ struct Options {
   std::string out;
 };
 
+// The options through frontsteal::reporting's CommandLine (CLI11), as every frontsteal program reads them:
+// defaults shown in --help, a mistake exits 2 naming the flag.
 Options parse(int argc, char** argv) {
-  using frontsteal::cli::parse_number;
   Options o;
-  frontsteal::cli::ArgReader args(argc, argv, kProgram, kUsage);
-  while (args.next()) {
-    const std::string_view f = args.flag();
-    if (f == "--threads") o.threads = parse_number<frontsteal::WorkerId>(kProgram, f, args.value(), 1, 256);
-    else if (f == "--rows") o.rows = parse_number<frontsteal::ItemId>(kProgram, f, args.value(), 1, 1u << 20);
-    else if (f == "--width") o.width = parse_number<std::uint32_t>(kProgram, f, args.value(), 1, 1u << 16);
-    else if (f == "--max-iter") o.max_iter = parse_number<std::uint32_t>(kProgram, f, args.value(), 1, 1u << 20);
-    else if (f == "--frames") o.frames = parse_number<std::uint32_t>(kProgram, f, args.value(), 3, 100000);
-    else if (f == "--out") o.out = std::string(args.value());
-    else frontsteal::cli::usage_error(kProgram, "unknown flag " + std::string(f));
-  }
+  frontsteal::report::CommandLine cli(kProgram, "Mandelbrot rows as frontsteal items: stealing/Fenced against queue-mutex.",
+                                      "Exit status: 0 when every check held, 1 when one failed, 2 on a usage error.");
+  cli.option("--threads", o.threads, "workers")->type_name("P")->check(CLI::Range(1u, 256u));
+  cli.option("--rows", o.rows, "items = image rows")->type_name("N")->check(CLI::Range(1u, 1u << 20));
+  cli.option("--width", o.width, "points per row")->type_name("W")->check(CLI::Range(1u, 1u << 16));
+  cli.option("--max-iter", o.max_iter, "iteration bound per point")->type_name("K")->check(CLI::Range(1u, 1u << 20));
+  cli.option("--frames", o.frames, "measured frames per scheduler, after one warm-up frame")
+      ->type_name("F")->check(CLI::Range(3u, 100000u));
+  cli.option("--out", o.out, "also write every frame as CSV (scheduler,frame,wall_ns,steals)")->type_name("FILE");
+  cli.parse(argc, argv);
   return o;
 }
 
@@ -158,7 +148,10 @@ int main(int argc, char** argv) {
   std::ofstream csv;
   if (!o.out.empty()) {
     csv.open(o.out);
-    if (!csv) frontsteal::cli::usage_error(kProgram, "--out: cannot write " + o.out);
+    if (!csv) {
+      std::cerr << kProgram << ": --out: cannot write " << o.out << "\n";
+      return 2;
+    }
     csv << "scheduler,frame,wall_ns,steals\n";
   }
   const frontsteal::noise::ProcSample before = frontsteal::noise::sample_now();

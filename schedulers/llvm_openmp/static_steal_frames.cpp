@@ -1,0 +1,141 @@
+// static_steal_frames.cpp — the child's frames under schedule(runtime) (static_steal_frames.hpp).
+#include "schedulers/llvm_openmp/static_steal_frames.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "core/thread_cpu_time.hpp"
+#include "schedulers/llvm_openmp/static_steal_probe.hpp"
+
+#ifndef FRONTSTEAL_DATA_DIR
+#define FRONTSTEAL_DATA_DIR "data"
+#endif
+
+namespace frontsteal::llvm_openmp {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+std::int64_t ns_since(Clock::time_point t) {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t).count();
+}
+
+}  // namespace
+
+StaticStealFrames::StaticStealFrames(const Options& o) : o_(o) {
+  try {
+    model_ = ts::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot load scene '" + o.scene + "': " + e.what());
+  }
+  n_ = static_cast<long long>(model_.surfaces.size());
+  grain_ = o.grain;
+  chunks_ = (n_ + grain_ - 1) / grain_;
+  for (const ts::Surface& s : model_.surfaces) prepared_.push_back(ts::prepare_surface(s));
+  buffers_.resize(static_cast<std::size_t>(n_));
+  settings_.pixel_tolerance = o.tolerance;
+  settings_.planted_defect = o.defect;
+  const ts::Box box = ts::model_box(model_);
+  const ts::DenseRegion dense = ts::densest_region(model_);  // dense-zoom's target, as the parent computes it
+  for (int f = 0; f < o.frames; ++f) {
+    cameras_.push_back(ts::camera_on(o.path, box, f, o.frames, o.width, o.height, &dense));
+    frusta_.push_back(ts::Frustum::of(cameras_.back()));
+  }
+  scratch_.resize(static_cast<std::size_t>(o.workers));
+  triangles_.assign(static_cast<std::size_t>(n_), 0);
+  inconsistent_.assign(static_cast<std::size_t>(n_), 0);
+  runs_ = std::vector<std::atomic<std::uint32_t>>(static_cast<std::size_t>(n_));
+  runner_.assign(static_cast<std::size_t>(n_), -1);
+  workers_.resize(static_cast<std::size_t>(o.workers));
+}
+
+void StaticStealFrames::run_item(int f, long long id, int t) {
+  const ts::SurfaceResult r = ts::tessellate_surface(prepared_[id], cameras_[f], frusta_[f], settings_, scratch_[t],
+                                                     buffers_[id]);
+  triangles_[id] = static_cast<std::uint32_t>(r.triangles);
+  inconsistent_[id] = r.inconsistencies() > 0;
+  runs_[id].fetch_add(1, std::memory_order_relaxed);  // read after the region's end (its barrier orders it)
+  runner_[id] = t;
+  ++workers_[t].items;
+}
+
+// Each chunk index c covers items [c * grain, min((c + 1) * grain, N)), so static_steal's chunk 1 over chunk
+// indices is its chunk `grain` over items, timed once per claim.
+std::int64_t StaticStealFrames::run_frame(int f) {
+  const int P = o_.workers;
+  const int chunks32 = static_cast<int>(chunks_);  // the caller checked that it fits
+  for (auto& w : workers_) w = Worker{};
+  const Clock::time_point start = Clock::now();
+#pragma omp parallel num_threads(P)
+  {
+    const int t = omp_get_thread_num();
+    if (o_.pin) pinning_.pin_this_thread(static_cast<unsigned>(t));
+    const Clock::time_point span = Clock::now();
+    const std::int64_t cpu = frontsteal::thread_cpu_ns();
+    // A 32-bit induction variable: libomp's lock-free static_steal (one 64-bit CAS on a thread's (count,
+    // limit) pair); 64-bit ones take a per-thread lock for every chunk (kmp_dispatch.cpp, type_size > 4).
+#pragma omp for schedule(runtime) nowait
+    for (int ci = 0; ci < chunks32; ++ci) {
+      const long long c = ci;
+      const Clock::time_point claim = Clock::now();
+      for (long long id = c * grain_; id < std::min((c + 1) * grain_, n_); ++id) {
+        if (id == o_.fault_item && o_.fault == Options::Fault::drop) continue;
+        run_item(f, id, t);
+        if (id == o_.fault_item && o_.fault == Options::Fault::dup) run_item(f, id, t);
+      }
+      workers_[t].busy_ns += ns_since(claim);
+    }
+    workers_[t].active_ns = ns_since(span);
+    workers_[t].cpu_ns = frontsteal::thread_cpu_ns() - cpu;
+  }
+  const std::int64_t wall = ns_since(start);
+  const bool static_ranges = P > 1 && chunks_ >= P;  // libomp's own condition for static_steal's ranges
+  if (static_ranges) {
+    for (long long c = 0; c < chunks_; ++c) {
+      const int t = runner_[c * grain_];
+      if (t >= 0 && t != owner_of(c, chunks_, P)) {
+        ++workers_[t].chunks_stolen;
+        workers_[t].items_stolen += std::min((c + 1) * grain_, n_) - c * grain_;
+      }
+    }
+  }
+  return wall;
+}
+
+void StaticStealFrames::warm_up() {
+  run_frame(0);
+  for (auto& r : runs_) r.store(0, std::memory_order_relaxed);
+}
+
+std::string StaticStealFrames::encoded_runs() {
+  std::string out;
+  for (long long i = 0; i < n_;) {
+    const std::uint32_t v = runs_[i].load(std::memory_order_relaxed);
+    long long j = i;
+    while (j < n_ && runs_[j].load(std::memory_order_relaxed) == v) runs_[j++].store(0, std::memory_order_relaxed);
+    out += (i ? "," : "") + std::to_string(v) + '*' + std::to_string(j - i);
+    i = j;
+  }
+  if (n_ == 0) out += "-";
+  return out;
+}
+
+std::string StaticStealFrames::frame_line(int f) {
+  std::fill(runner_.begin(), runner_.end(), -1);
+  const std::int64_t wall = run_frame(f);
+  std::uint64_t tri = 0, bad = 0;
+  for (long long i = 0; i < n_; ++i) tri += triangles_[i], bad += inconsistent_[i];
+  std::string out = "frame " + std::to_string(f) + ' ' + std::to_string(wall) + ' ' + std::to_string(tri) + ' ' +
+                    std::to_string(bad) + ' ' + std::to_string(o_.workers);
+  for (const Worker& w : workers_) {
+    for (std::int64_t v : {w.items, w.busy_ns, w.active_ns, w.cpu_ns, w.chunks_stolen, w.items_stolen}) {
+      out += ' ' + std::to_string(v);
+    }
+  }
+  return out + ' ' + encoded_runs();
+}
+
+}  // namespace frontsteal::llvm_openmp

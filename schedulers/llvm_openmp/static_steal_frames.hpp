@@ -1,0 +1,65 @@
+// static_steal_frames.hpp — the child's workload: the scene, cameras and settings prepared exactly as the main
+// job prepares them, and one frame at a time under a schedule(runtime) loop (static_steal, set through
+// OMP_SCHEDULE by the child's main), reported as one protocol line.
+//
+// Roles: the OpenMP team runs the items; each thread writes only its own Worker slot and the items it ran;
+// the main thread reads everything after the parallel region (its barrier orders the writes). "Steals" are
+// chunks run by a thread other than their static owner (static_steal_probe.hpp's range formula); with fewer
+// chunks than threads libomp falls back to another schedule and steals are 0.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/thread_pinning.hpp"
+#include "schedulers/llvm_openmp/child_options.hpp"
+#include "tessellate/camera_path.hpp"
+#include "tessellate/scene_generator.hpp"
+#include "tessellate/surface_tessellator.hpp"
+
+namespace frontsteal::llvm_openmp {
+
+class StaticStealFrames {
+ public:
+  // Loads and prepares the scene; throws std::runtime_error ("cannot load scene ...") when it cannot.
+  explicit StaticStealFrames(const Options& o);
+
+  long long items() const noexcept { return n_; }
+  long long chunks() const noexcept { return chunks_; }
+
+  // Frame 0 once, untimed, as the main job does for every in-process scheduler; the counts are reset.
+  void warm_up();
+  // Runs frame f and returns its protocol line (without the newline):
+  //   frame <f> <wall_ns> <triangles> <inconsistent> <P> {<items> <busy_ns> <active_ns> <cpu_ns>
+  //   <chunks_stolen> <items_stolen>} x P <runs>
+  // with <runs> the per-item execution counts, run-length encoded ("count*length,..."), then reset.
+  std::string frame_line(int f);
+
+ private:
+  struct alignas(64) Worker {
+    std::int64_t items = 0, busy_ns = 0, active_ns = 0, cpu_ns = 0, chunks_stolen = 0, items_stolen = 0;
+  };
+  void run_item(int f, long long id, int t);
+  std::int64_t run_frame(int f);  // returns the wall time (ns)
+  std::string encoded_runs();     // <runs>, and the counts reset for the next frame
+
+  Options o_;
+  ts::Model model_;
+  long long n_ = 0, grain_ = 1, chunks_ = 0;
+  std::vector<ts::PreparedSurface> prepared_;
+  std::vector<ts::TriangleBuffers> buffers_;
+  ts::TessellationSettings settings_;
+  std::vector<ts::Camera> cameras_;
+  std::vector<ts::Frustum> frusta_;
+  std::vector<ts::TessellationScratch> scratch_;
+  std::vector<std::uint32_t> triangles_;
+  std::vector<std::uint8_t> inconsistent_;
+  std::vector<std::atomic<std::uint32_t>> runs_;
+  std::vector<std::int32_t> runner_;  // the thread that last ran item i
+  std::vector<Worker> workers_;
+  const ThreadPinning pinning_;
+};
+
+}  // namespace frontsteal::llvm_openmp

@@ -1,0 +1,114 @@
+// main_job_json.cpp — frontsteal.json (main_job_json.hpp).
+#include "schedulers/main_job_json.hpp"
+
+#include <cmath>
+
+#include "reporting/results_dir.hpp"
+
+#ifndef FRONTSTEAL_GIT_COMMIT
+#define FRONTSTEAL_GIT_COMMIT "unknown"
+#endif
+
+namespace frontsteal::main_job {
+
+namespace {
+
+using report::Json;
+
+// frontsteal.json's schema (docs/results-schema.md). 2: the common header of reporting/ (schema 1, written by
+// hand, had no schema_version or program); every key of schema 1 is kept.
+constexpr int kSchemaVersion = 2;
+
+Json usage_json(const nz::Usage& u, const nz::Thresholds& t) {
+  return {{"wall_s", u.wall_s}, {"windows", u.windows}, {"ticks", u.total_ticks}, {"other_share", u.other_share()},
+          {"steal_share", u.steal_share()}, {"busy", nz::assess(u, t).busy}};
+}
+
+// {"worst", "worst_frame", "median", "per_frame"}; infinity (a worker with nothing) is null.
+Json spread_json(const sc::CostSpread& c) {
+  auto number = [](double v) { return std::isinf(v) ? Json(nullptr) : Json(v); };
+  Json per_frame = Json::array();
+  for (double v : c.per_frame) per_frame.push_back(number(v));
+  return {{"worst", number(c.worst)}, {"worst_frame", c.worst_frame}, {"median", number(c.median)}, {"per_frame", per_frame}};
+}
+
+}  // namespace
+
+// frontsteal.json: the set-up, the round-robin spread, the noise, the serial loop, and per scheduler and P the
+// data table's row with the structured values added (comparisons, noise, per worker, per repeat, per frame).
+Json results_json(const Measured& m, const Analysis& a, const report::Table& data) {
+  const Options& o = m.o;
+  Json js = report::document(kProgram, kSchemaVersion, "measured", FRONTSTEAL_GIT_COMMIT);
+  js["machine"] = a.machine;
+  js["scene"] = o.scene;
+  js["surfaces"] = m.wl.model.surfaces.size();
+  js["frames"] = o.frames;
+  js["repeats"] = o.repeats;
+  js["tolerance_px"] = o.tolerance;
+  js["image"] = {o.width, o.height};
+  js["hardware_threads"] = m.cores;
+  js["repeats_note"] = m.repeats_note;
+  js["pinned"] = o.pin;
+  js["path"] = ts::name(o.path);
+  js["path_note"] = a.path_line;
+  if (o.interference) {
+    js["interference"] = {{"on", true}, {"duty_pct", 100 * o.interference->duty},
+                          {"setup", o.interference->pinned ? "pinned" : "unpinned"}, {"period_ms", 10},
+                          {"co_runner_cpu", m.co_runner_cpu}, {"co_runner_core_share_measured", a.co_runner_core_share},
+                          {"serial_loop", "co-runner paused"}, {"note", a.interference_line}};
+  } else {
+    js["interference"] = {{"on", false}};
+  }
+  Json spreads = Json::array();
+  for (const SpreadRow& r : a.spreads) {
+    spreads.push_back({{"workers", r.p}, {"serial_item_times", spread_json(r.measured)},
+                       {"estimates", spread_json(r.estimated)},
+                       {"round_robin_busy", r.busy ? spread_json(*r.busy) : Json(nullptr)}});
+  }
+  js["round_robin_spread"] = spreads;
+  js["noise"] = {{"before", usage_json(a.before_usage, o.noise)}, {"during", usage_json(a.during_usage, o.noise)},
+                 {"after", usage_json(a.after_usage, o.noise)}, {"co_runner_share_during", a.during_usage.known_share()},
+                 {"load1_before", m.at_start.load1}, {"load1_after", m.at_end.load1},
+                 {"serial_spread_pct", 100 * a.serial_spread}, {"busy_threshold_pct", 100 * o.noise.other_share},
+                 {"spread_threshold_pct", 100 * o.noise.spread}, {"verdicts", a.verdicts},
+                 {"unreliable_verdicts", a.unreliable}, {"warnings", a.noise_warnings}};
+  js["serial"] = {{"path_ms", a.t1_ms}, {"path_ms_per_repeat", m.serial_path_ms},
+                  {"triangles_per_frame", m.wl.serial_triangles},
+                  {"inconsistent_surfaces_per_frame", m.wl.serial_inconsistencies},
+                  {"capped_surfaces_per_frame", m.wl.serial_capped}, {"max_steps", m.wl.settings.max_steps},
+                  {"frame_ms_median", frame_medians(m.serial_frame_ms, o.frames)}};
+  const Json rows = data.json();  // [0] is the serial loop, already under "serial"
+  Json results = Json::array();
+  for (std::size_t i = 0; i < a.rows.size(); ++i) {
+    const Row& r = a.rows[i];
+    const Cell& c = *r.cell;
+    Json row = rows.at(i + 1);
+    row["items_stolen"] = c.totals.items_stolen;
+    row["vs_serial"] = r.vs_serial.json();
+    row["vs_queue_mutex"] = r.vs_queue ? r.vs_queue->json() : Json(nullptr);
+    row["noise"] = usage_json(c.usage, o.noise);
+    Json per_worker = Json::array();
+    for (const WorkerFrameStats& ws : c.per_worker) {
+      per_worker.push_back({{"items", ws.items_processed}, {"busy_ms", ws.busy_ns / 1e6}, {"cpu_ms", ws.cpu_ns / 1e6},
+                            {"active_ms", ws.active_ns / 1e6}});
+    }
+    row["per_worker"] = per_worker;
+    row["path_ms_per_repeat"] = c.path_ms;
+    row["frame_ms_median"] = frame_medians(c.frame_ms, o.frames);
+    results.push_back(std::move(row));
+  }
+  js["results"] = results;
+  Json not_available = Json::array();
+  for (const Cell& c : m.not_available) {
+    not_available.push_back({{"scheduler", c.scheduler}, {"workers", c.workers}, {"reason", c.unavailable}});
+  }
+  js["not_available"] = not_available;
+  Json children = Json::array();
+  for (const Cell& c : m.cells) {
+    if (c.child) children.push_back({{"scheduler", c.scheduler}, {"workers", c.workers}, {"ready", c.child->ready_line()}});
+  }
+  js["child_processes"] = children;
+  return js;
+}
+
+}  // namespace frontsteal::main_job

@@ -1,0 +1,204 @@
+// main_job_options.cpp — frontsteal's command line (main_job_options.hpp): the --help text, --list, and every
+// option through report::CommandLine (CLI11), with the checks CLI11 cannot express as validators.
+#include "schedulers/main_job_options.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <thread>
+#include <tuple>
+#include <vector>
+
+#include "reporting/command_line.hpp"
+#include "schedulers/llvm_openmp_child.hpp"
+#include "schedulers/registry.hpp"
+
+namespace frontsteal::main_job {
+
+namespace fs = frontsteal;
+namespace sc = frontsteal::sched;
+namespace report = frontsteal::report;
+
+namespace {
+
+constexpr const char* kDescription = R"(Tessellates a scene along a deterministic camera path (an orbit of the whole model, then a zoom into a small
+corner region: the case where round robin becomes imbalanced, paper §3) with a serial loop and with every
+scheduler at P = 1 ... cores and oversubscribed (2 x cores), measured side by side in one run. Shows progress,
+prints a table (frames/s, speed-up over the serial loop, % of ideal T1/P, utilization = busy / (wall x P),
+CPU time and time off a CPU per worker, imbalance = max/mean busy, steals, lock waits, and per comparison the
+median paired ratio with its 95 % bootstrap interval and a verdict) and writes JSON, CSV, markdown and PNG
+plots (gnuplot). A noise monitor samples /proc before, during and after the measurement; when other processes
+or the hypervisor took a share of the machine, or the serial loop's repeats spread too much, it prints a
+warning and marks the verdicts it affects "unreliable".
+Every frame is audited: each surface tessellated exactly once, triangle count equal to the serial loop's,
+and each trimmed surface's triangles tile its trimmed domain exactly (no overlap, no covered hole, (u, v) area
+equal to the trim loops'). Any failure is reported and the exit status is 1.)";
+
+constexpr const char* kFooter = R"(
+Verdicts: per repeat r, ratio = T_P[r] / T_ref[r] with T_ref the serial loop (same repeat) or queue-mutex at
+the same P; "ahead" when the 95 % interval of the median ratio lies below 1, "behind" above 1, "no difference"
+when it contains 1; the effect is (median ratio - 1) in % of path time (negative: faster).
+Columns cpu and off-cpu: the workers' thread CPU time, and their time in the frame without a CPU
+(descheduled, or asleep on a lock), both over wall x P like utilization; idle for lack of work shows as
+utilization below cpu.
+
+openmp-static-steal (LLVM libomp's static_steal) runs in a child process, frontsteal-llvm-openmp, built with
+clang++-14 beside this program (FRONTSTEAL_LLVM_OPENMP=PATH overrides where it is); where it is missing its
+rows read "not available" with the reason, and the run goes on.
+Round-robin cost spread: per frame, max/min over workers of the cost round robin (item i on worker i mod P)
+gives them, from the serial warm-up pass's measured per-item times and from the cost estimates, and the
+round-robin rows' measured busy time per worker; worst frame and median over frames (paper §3: 1:50).
+
+Outputs in DIR: frontsteal.json (everything, per frame), frontsteal.csv and frontsteal.md (the table),
+frontsteal-speedup.png (speed-up against P), frontsteal-frames.png (frame time along the path).
+All figures are measured on this machine; none are simulated.
+Exit status: 0; 1 when an audit fails or a scheduler cannot run; 2 for bad usage (or a scene that cannot be
+loaded).)";
+
+}  // namespace
+
+unsigned hardware_cores() { return std::max(1u, std::thread::hardware_concurrency()); }
+
+namespace {
+
+// --list: every scheduler, with the ones the main job does not run marked.
+[[noreturn]] void print_list() {
+  for (const auto& s : sc::scheduler_registry()) {
+    std::cout << std::left << std::setw(22) << s.name << s.summary
+              << (s.contract == fs::Contract::kAtLeastOnce ? "  [at-least-once: not run on tessellation]" : "") << '\n';
+  }
+  std::cout << std::left << std::setw(22) << sc::kLlvmOpenMpName << sc::kLlvmOpenMpSummary
+            << (sc::llvm_openmp_unavailable_reason().empty() ? "" : "  [not available: " + sc::llvm_openmp_unavailable_reason() + "]")
+            << '\n';
+  std::exit(0);
+}
+
+// A CLI11 validator from a parser that says why a value is wrong ("" when it is right).
+CLI::Validator validator(std::function<std::string(const std::string&)> why_not) {
+  return CLI::Validator([why_not = std::move(why_not)](std::string& v) { return why_not(v); }, "");
+}
+
+// --schedulers (empty or "all": every exactly-once scheduler, and the LLVM child) → the names to run.
+std::vector<std::string> chosen_schedulers(const std::vector<std::string>& asked, const report::CommandLine& cli) {
+  std::vector<std::string> wanted;
+  if (asked.empty() || (asked.size() == 1 && asked[0] == "all")) {
+    for (const auto& s : sc::scheduler_registry()) {
+      if (s.contract == fs::Contract::kExactlyOnce) wanted.push_back(s.name);
+    }
+    wanted.emplace_back(sc::kLlvmOpenMpName);  // a child process (llvm_openmp_child.hpp); "not available" if not built
+    return wanted;
+  }
+  for (const auto& name : asked) {
+    if (name == sc::kLlvmOpenMpName) {
+      wanted.push_back(name);
+      continue;
+    }
+    const sc::SchedulerInfo* s = sc::find_scheduler(name);
+    if (!s) cli.usage_error("--schedulers: unknown scheduler '" + name + "' (see --list)");
+    if (s->contract != fs::Contract::kExactlyOnce) {
+      cli.usage_error("--schedulers: " + name + " is at-least-once: a duplicated surface would be tessellated into "
+                      "its buffer by two threads at once; the main job runs exactly-once schedulers only");
+    }
+    wanted.push_back(name);
+  }
+  return wanted;
+}
+
+}  // namespace
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  report::CommandLine cli(kProgram, kDescription, kFooter);
+  bool list = false, no_plot = false;
+  cli.flag("--list", list, "list the schedulers and exit");
+  cli.option("--scene", o.scene, "teapot | teacup | teaspoon | plant:N[:seed] | path to a model file")->type_name("S");
+  cli.app().add_option("--schedulers", o.schedulers, "comma-separated scheduler names, or all (default all; see --list)")
+      ->delimiter(',')->type_name("L");
+  std::vector<unsigned> threads;
+  cli.threads(threads, "comma-separated worker counts P (default 1..cores, then 2 x cores)")->type_name("L");
+  std::string path = "orbit-then-zoom";
+  cli.option("--path", path,
+             "camera path: orbit-then-zoom (half an orbit of the whole model, half a zoom into a corner), walkthrough "
+             "(low among the parts, corner to corner), dense-zoom (from the overview to a close view of the densest "
+             "region: a few surfaces' view-dependent cost dominates)")
+      ->type_name("K")->check(CLI::IsMember({"orbit-then-zoom", "walkthrough", "dense-zoom"}));
+  cli.option("--frames", o.frames, "frames along the path")->type_name("F")->check(CLI::Range(1, 100000));
+  std::string repeats = "auto";
+  cli.option("--repeats", repeats,
+             "interleaved runs of the path per scheduler and P; medians, paired ratios and their bootstrap intervals "
+             "are reported. auto: 10 when the warm-up pass predicts they fit in --budget, else as many as fit, at "
+             "least 5; rounds stop early (not below 5) once the budget is spent")
+      ->type_name("R|auto")->check(validator([&](const std::string& v) -> std::string {
+        if (v == "auto") return {};
+        try {
+          std::size_t end = 0;
+          const int r = std::stoi(v, &end);
+          if (end == v.size() && r >= 1 && r <= 1000) return {};
+        } catch (const std::exception&) {
+        }
+        return "expects auto or an integer in [1, 1000], got '" + v + "'";
+      }));
+  cli.option("--budget", o.budget_s, "seconds the measured repeats may take under --repeats auto")
+      ->type_name("S")->check(CLI::Range(1.0, 1e6));
+  cli.flag("--pin", o.pin, "pin worker w (and the serial loop, as worker 0) to the w-th allowed CPU (off by default; "
+                           "the \"spread of the repeats\" line says whether it narrows them)");
+  std::string interference;
+  cli.option("--interference", interference,
+             "a co-runner child process busy-loops DUTY % (1-100, default 50) of each 10 ms on one core while the "
+             "schedulers run (it is paused while the serial loop runs, so T1 stays the undisturbed reference). "
+             "pinned: workers pinned as with --pin and the co-runner on worker 0's core (the asymmetric slowdown "
+             "static lists cannot absorb); unpinned (default): nothing pinned, the OS places everything. Always "
+             "killed and reaped at the end (and if frontsteal dies); its CPU time is reported apart and is not "
+             "counted as noise (default off)")
+      ->type_name("DUTY[,pinned|unpinned]")->check(validator([](const std::string& v) {
+        std::string why;
+        return fi::parse_interference(v, &why) ? std::string() : "expects DUTY[,pinned|unpinned]: " + why;
+      }));
+  double noise_busy = 100 * o.noise.other_share, noise_spread = 100 * o.noise.spread;
+  cli.option("--noise-busy", noise_busy,
+             "share of the machine (%) other processes (or steal) may take before a run is unreliable")
+      ->type_name("PCT")->check(CLI::Range(0.0, 100.0));
+  cli.option("--noise-spread", noise_spread,
+             "spread max/min - 1 (%) of the serial loop's repeats above which a run is unreliable")
+      ->type_name("PCT")->check(CLI::Range(0.0, 1000.0));
+  cli.option("--tolerance", o.tolerance, "screen-space tolerance in pixels")->type_name("PX")->check(CLI::Range(0.01, 1000.0));
+  cli.option("--grain", o.grain,
+             "items per claim of the chunked schedulers (queue, counter, Chase-Lev, TBB, OpenMP) (default: each "
+             "scheduler's own: N/(100P) for queue and counter, 1 for the others)")
+      ->type_name("G")->default_str("")->check(CLI::Range(fs::ItemId{1}, std::numeric_limits<fs::ItemId>::max()));
+  std::string size = "1280x720";
+  cli.option("--size", size, "image size the steps are computed for")->type_name("WxH")->check(report::size_validator());
+  cli.seed(o.seed, "seed of victim orders and of the annealing")->type_name("S");
+  cli.out(o.out)->type_name("DIR");
+  cli.flag("--no-plot", no_plot, "do not run gnuplot (the .gp scripts are still written)");
+  std::string defect;
+  cli.option("--plant-defect", defect,
+             "negative control: tessellate with a planted defect (wave1-bridge | drop-ear) to see the audit fail (exit 1)")
+      ->type_name("D")->check(CLI::IsMember({"wave1-bridge", "drop-ear"}));
+  cli.quiet(o.quiet);
+  cli.parse(argc, argv);
+  if (list) print_list();
+
+  o.path = *ts::camera_path_named(path);
+  if (cli.app().count("--interference")) o.interference = fi::parse_interference(interference, nullptr);
+  if (o.interference && o.interference->pinned) o.pin = true;  // pinned set-up: workers pinned as by --pin
+  o.repeats = repeats == "auto" ? 0 : std::stoi(repeats);
+  if (cli.app().count("--noise-busy")) o.noise.other_share = o.noise.steal_share = noise_busy / 100.0;
+  o.noise.spread = noise_spread / 100.0;
+  std::tie(o.width, o.height) = report::parse_size(size);
+  o.plot = !no_plot;
+  if (!defect.empty()) o.planted_defect = *ts::planted_defect_named(defect);
+  o.threads.assign(threads.begin(), threads.end());
+  if (o.threads.empty()) {
+    for (unsigned p = 1; p <= hardware_cores(); ++p) o.threads.push_back(p);
+    o.threads.push_back(2 * hardware_cores());
+  }
+  o.schedulers = chosen_schedulers(o.schedulers, cli);
+  return o;
+}
+
+}  // namespace frontsteal::main_job

@@ -1,0 +1,55 @@
+// main_job_options.hpp — the main job's (frontsteal) options, and their parsing through report::CommandLine
+// (CLI11): every flag, its default, its range, and the usage errors (exit 2, naming the flag).
+//
+// Why apart from the main: the options are the main job's interface; the measurement (main_job_run.hpp) and
+// the report (main_job_report.hpp) read them, and the main only hands them over.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/id_range.hpp"
+#include "schedulers/interference.hpp"
+#include "schedulers/noise_monitor.hpp"
+#include "tessellate/camera_path.hpp"
+#include "tessellate/surface_tessellator.hpp"
+
+namespace frontsteal::main_job {
+
+namespace ts = frontsteal::tess;
+namespace nz = frontsteal::noise;
+namespace fi = frontsteal::interference;
+
+inline constexpr const char* kProgram = "frontsteal";
+
+struct Options {
+  std::string scene = "plant:15906";
+  std::vector<std::string> schedulers;  // empty: all exactly-once ones
+  std::vector<WorkerId> threads;
+  int frames = 24;
+  ts::CameraPathKind path = ts::CameraPathKind::orbit_then_zoom;
+  std::optional<fi::InterferenceSpec> interference;  // absent: off
+  int repeats = 0;  // 0: auto (see --repeats)
+  double budget_s = 180;
+  bool pin = false;
+  nz::Thresholds noise;
+  double tolerance = 1.0;
+  ItemId grain = 0;
+  int width = 1280, height = 720;
+  std::uint64_t seed = 1;
+  std::string out = "out";
+  bool plot = true;
+  bool quiet = false;
+  ts::PlantedDefect planted_defect = ts::PlantedDefect::none;
+};
+
+// The hardware threads of this machine (at least 1): the default --threads go up to it, and twice it.
+unsigned hardware_cores();
+
+// Parses frontsteal's command line. --help prints and exits 0, --list prints the schedulers and exits 0, a
+// mistake exits 2 naming the flag. The result is complete: threads and schedulers filled in when not given.
+Options parse_options(int argc, char** argv);
+
+}  // namespace frontsteal::main_job

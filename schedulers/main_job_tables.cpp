@@ -1,0 +1,95 @@
+// main_job_tables.cpp — the main job's shown table and data table (main_job_tables.hpp).
+#include "schedulers/main_job_tables.hpp"
+
+#include <string>
+#include <vector>
+
+namespace frontsteal::main_job {
+
+namespace {
+
+std::string fixed(double v, int digits) { return report::fixed_text(v, digits); }
+
+}  // namespace
+
+// The table as the terminal and frontsteal.md show it: the serial loop first, then every scheduler and P,
+// then the cells that could not run. Existing columns first, in their old order; the added ones (cpu, off-cpu,
+// the two comparisons) after lock waits, audit last.
+report::Table shown_table(const Measured& m, const Analysis& a) {
+  const bool text = false;
+  report::Table t({{"workers", "P"}, {"scheduler", "scheduler", text}, {"frames_per_s", "frames/s"},
+                   {"speedup", "speed-up"}, {"ideal_pct", "% of ideal"}, {"utilization_pct", "utilization"},
+                   {"imbalance_mean", "imbalance"}, {"steals", "steals (failed)"}, {"lock_waits", "lock waits"},
+                   {"cpu_pct", "cpu"}, {"off_cpu_pct", "off-cpu"}, {"ratio_vs_serial", "T_P/T1 [95% CI]", text},
+                   {"verdict_vs_serial", "vs serial", text}, {"ratio_vs_queue", "T_P/T_queue [95% CI]", text},
+                   {"verdict_vs_queue", "vs queue-mutex", text}, {"audit", "audit", text}});
+  t.add_row({1, "serial loop (T1)", fixed(1000.0 * m.o.frames / a.t1_ms, 2), "1.00", "100.0", "-", "-", "-", "-", "-",
+             "-", "reference", "-", "-", "-", "-"});
+  for (const Row& r : a.rows) {
+    const Cell& c = *r.cell;
+    const std::uint64_t failed = c.totals.steal_attempts - c.totals.steals_succeeded;
+    t.add_row({c.workers, c.scheduler, fixed(r.fps, 2), fixed(r.speedup, 2), fixed(r.ideal_pct, 1),
+               fixed(r.utilization, 1) + "%", fixed(r.imbalance_mean, 3),
+               std::to_string(c.totals.steals_succeeded) + " (" + std::to_string(failed) + ")", c.totals.lock_waits,
+               fixed(r.cpu_pct, 1) + "%", fixed(r.off_cpu_pct, 1) + "%", r.vs_serial.interval_text(),
+               r.vs_serial.verdict_text(), r.vs_queue ? r.vs_queue->interval_text() : "-",
+               r.vs_queue ? r.vs_queue->verdict_text() : (c.scheduler == "queue-mutex" ? "reference" : "-"),
+               c.failed() ? "FAILED" : "ok"});
+  }
+  for (const Cell& c : m.not_available) {
+    t.add_row({c.workers, c.scheduler, "not available: " + c.unavailable, "-", "-", "-", "-", "-", "-", "-", "-", "-",
+               "-", "-", "-", "-"});
+  }
+  return t;
+}
+
+// The data (frontsteal.csv, and each row of frontsteal.json's results[]): full precision, the serial loop first.
+report::Table data_table(const Measured& m, const Analysis& a) {
+  const bool text = false;
+  report::Table t({{"workers", "P"}, {"scheduler", "scheduler", text}, {"path_ms", "path (ms)"},
+                   {"frames_per_s", "frames/s"}, {"speedup", "speed-up"}, {"ideal_pct", "% of ideal"},
+                   {"utilization_pct", "utilization (%)"}, {"imbalance_mean", "imbalance"},
+                   {"imbalance_max", "max imbalance"}, {"steals", "steals"}, {"steal_attempts", "steal attempts"},
+                   {"lock_waits", "lock waits"}, {"lock_wait_ms", "lock wait (ms)"}, {"setup_ms", "set-up (ms)"},
+                   {"audit_failures", "audit failures"}, {"triangle_mismatches", "triangle mismatches"},
+                   {"tessellation_inconsistencies", "tessellation inconsistencies"}, {"cpu_pct", "cpu (%)"},
+                   {"off_cpu_pct", "off-cpu (%)"}, {"path_spread_pct", "spread (%)"},
+                   {"ratio_vs_serial", "T_P/T1"}, {"ratio_vs_serial_ci_low", "T_P/T1 low"},
+                   {"ratio_vs_serial_ci_high", "T_P/T1 high"}, {"verdict_vs_serial", "vs serial", text},
+                   {"effect_vs_serial_pct", "effect vs serial (%)"}, {"ratio_vs_queue", "T_P/T_queue"},
+                   {"ratio_vs_queue_ci_low", "T_P/T_queue low"}, {"ratio_vs_queue_ci_high", "T_P/T_queue high"},
+                   {"verdict_vs_queue", "vs queue-mutex", text}, {"effect_vs_queue_pct", "effect vs queue-mutex (%)"},
+                   {"reliable", "reliable", text}});
+  auto num = [](double v) { return report::Cell::fixed(v, 3); };
+  const report::Cell none = report::Cell::empty();
+  std::vector<report::Cell> serial{1, "serial", num(a.t1_ms), num(1000.0 * m.o.frames / a.t1_ms), 1, 100};
+  serial.insert(serial.end(), 8, none);
+  serial.insert(serial.end(), {0, 0, a.serial_inconsistencies, none, none, num(100 * a.serial_spread)});
+  serial.insert(serial.end(), 10, none);
+  serial.emplace_back(a.noise_warnings.empty());
+  t.add_row(std::move(serial));
+  auto comparison = [&](std::vector<report::Cell>& row, const ShownComparison* c) {
+    if (!c) {
+      row.insert(row.end(), 5, none);
+      return;
+    }
+    row.insert(row.end(), {num(c->c.ratio.median), num(c->c.ratio.low), num(c->c.ratio.high),
+                           c->reliable ? st::to_string(c->c.verdict) : "unreliable", num(c->c.effect_pct)});
+  };
+  for (const Row& r : a.rows) {
+    const Cell& c = *r.cell;
+    std::vector<report::Cell> row{c.workers, c.scheduler, num(r.path_ms), num(r.fps), num(r.speedup), num(r.ideal_pct),
+                                  num(r.utilization), num(r.imbalance_mean), num(c.imbalance_max),
+                                  c.totals.steals_succeeded, c.totals.steal_attempts, c.totals.lock_waits,
+                                  num(c.totals.lock_wait_ns / 1e6), num(c.setup_ms), c.audit_failures,
+                                  c.triangle_mismatches, c.tessellation_inconsistencies, num(r.cpu_pct),
+                                  num(r.off_cpu_pct), num(r.spread_pct)};
+    comparison(row, &r.vs_serial);
+    comparison(row, r.vs_queue ? &*r.vs_queue : nullptr);
+    row.emplace_back(r.vs_serial.reliable && (!r.vs_queue || r.vs_queue->reliable));
+    t.add_row(std::move(row));
+  }
+  return t;
+}
+
+}  // namespace frontsteal::main_job

@@ -1,0 +1,134 @@
+// main_job_workload.cpp — the main job's workload (main_job_workload.hpp): the scene's preparation, the
+// per-surface tessellation state, the serial warm-up pass and --repeats auto.
+#include "schedulers/main_job_workload.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+
+#include "core/machine_info.hpp"
+#include "reporting/table.hpp"
+
+#ifndef FRONTSTEAL_DATA_DIR
+#define FRONTSTEAL_DATA_DIR "data"
+#endif
+
+namespace frontsteal::main_job {
+
+namespace fs = frontsteal;
+namespace report = frontsteal::report;
+
+PreparedScene prepare_scene(const Options& o, unsigned cores) {
+  PreparedScene scene;
+  Workload& wl = scene.wl;
+  const auto load_start = std::chrono::steady_clock::now();
+  try {
+    wl.model = ts::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
+  } catch (const std::exception& e) {
+    std::cerr << kProgram << ": cannot load scene '" << o.scene << "': " << e.what() << '\n';
+    std::exit(2);
+  }
+  const auto n = static_cast<fs::ItemId>(wl.model.surfaces.size());
+  if (n == 0) {
+    std::cerr << kProgram << ": scene '" << o.scene << "' has no surfaces\n";
+    std::exit(2);
+  }
+  for (const ts::Surface& s : wl.model.surfaces) wl.prepared.push_back(ts::prepare_surface(s));
+  wl.buffers.resize(n);
+  wl.settings.pixel_tolerance = o.tolerance;
+  wl.settings.planted_defect = o.planted_defect;
+  const ts::Box box = ts::model_box(wl.model);
+  scene.dense = ts::densest_region(wl.model);
+  for (int f = 0; f < o.frames; ++f) {
+    // orbit-then-zoom is camera_on_path itself: the same views as before --path existed.
+    wl.cameras.push_back(ts::camera_on(o.path, box, f, o.frames, o.width, o.height, &scene.dense));
+    wl.frusta.push_back(ts::Frustum::of(wl.cameras.back()));
+  }
+  for (const ts::PreparedSurface& p : wl.prepared) {
+    const glm::dvec3 c = p.box.centre();
+    scene.hints.centres.push_back({c.x, c.y, c.z});
+    const ts::SurfacePlan plan = ts::plan_surface(p, wl.cameras[0], wl.frusta[0], wl.settings);
+    scene.hints.costs.push_back(std::max(1.0, ts::estimate_cost(p, plan, wl.settings)));
+  }
+  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+  if (!o.quiet) {
+    std::fprintf(stderr, "frontsteal: scene %s: %u surfaces, %d frames (path %s), %s, %u hardware threads; "
+                 "prepared in %.2f s\n", o.scene.c_str(), n, o.frames, ts::name(o.path), fs::cpu_model().c_str(), cores,
+                 load_s);
+  }
+  return scene;
+}
+
+FrameTessellator::FrameTessellator(Workload& wl, WorkerId max_workers)
+    : wl_(wl), scratch_(std::max<std::size_t>(1, max_workers)), triangles_(wl.model.surfaces.size(), 0),
+      inconsistent_(wl.model.surfaces.size(), 0), capped_(wl.model.surfaces.size(), 0) {}
+
+void FrameTessellator::run(int f, ItemId id, WorkerId w) {
+  const ts::SurfaceResult r = ts::tessellate_surface(wl_.prepared[id], wl_.cameras[f], wl_.frusta[f], wl_.settings,
+                                                     scratch_[w], wl_.buffers[id]);
+  triangles_[id] = static_cast<std::uint32_t>(r.triangles);
+  inconsistent_[id] = r.inconsistencies() > 0;
+  capped_[id] = r.capped;
+}
+
+std::uint64_t FrameTessellator::frame_triangles() const {
+  std::uint64_t t = 0;
+  for (auto x : triangles_) t += x;
+  return t;
+}
+
+std::string FrameTessellator::first_inconsistent() const {
+  const auto it = std::find(inconsistent_.begin(), inconsistent_.end(), std::uint8_t{1});
+  return it == inconsistent_.end() ? std::string()
+                                   : wl_.model.surfaces[static_cast<std::size_t>(it - inconsistent_.begin())].name;
+}
+
+std::uint64_t FrameTessellator::count(const std::vector<std::uint8_t>& flags) {
+  return static_cast<std::uint64_t>(std::count(flags.begin(), flags.end(), std::uint8_t{1}));
+}
+
+WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess) {
+  const auto n = wl.model.surfaces.size();
+  WarmUp w{std::vector<std::vector<double>>(o.frames, std::vector<double>(n)),
+           std::vector<std::vector<double>>(o.frames, std::vector<double>(n)), 0};
+  for (int f = 0; f < o.frames; ++f) {
+    for (fs::ItemId id = 0; id < n; ++id) {
+      w.item_estimate[f][id] = ts::estimate_cost(
+          wl.prepared[id], ts::plan_surface(wl.prepared[id], wl.cameras[f], wl.frusta[f], wl.settings), wl.settings);
+    }
+  }
+  const auto warm_start = std::chrono::steady_clock::now();
+  for (int f = 0; f < o.frames; ++f) {
+    for (fs::ItemId id = 0; id < n; ++id) {
+      const auto t0 = std::chrono::steady_clock::now();
+      tess.run(f, id, 0);
+      w.item_ns[f][id] = static_cast<double>(
+          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+    }
+    wl.serial_triangles.push_back(tess.frame_triangles());
+    wl.serial_inconsistencies.push_back(tess.count_inconsistent());
+    wl.serial_capped.push_back(tess.count_capped());
+    if (wl.serial_inconsistencies.back() > 0) {
+      std::cerr << kProgram << ": frame " << f << ": " << wl.serial_inconsistencies.back()
+                << " surfaces fail the tessellation audit (first: " << tess.first_inconsistent() << ")\n";
+    }
+  }
+  w.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - warm_start).count();
+  return w;
+}
+
+std::string choose_repeats(Options& o, double warm_s, unsigned cores) {
+  double round_s = warm_s;
+  for (fs::WorkerId p : o.threads) {
+    round_s += o.schedulers.size() * (warm_s / std::min<double>(p, cores) + 0.005);
+  }
+  const int fit = static_cast<int>(o.budget_s / std::max(round_s, 1e-9));
+  o.repeats = std::clamp(fit, 5, 10);
+  return "auto: ~" + report::fixed_text(round_s, 1) + " s per round predicted, budget " +
+         report::fixed_text(o.budget_s, 0) + " s";
+}
+
+}  // namespace frontsteal::main_job

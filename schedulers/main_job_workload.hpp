@@ -1,0 +1,84 @@
+// main_job_workload.hpp — the main job's workload: the scene loaded and prepared once with its camera path
+// (Workload), the per-surface tessellation state every run writes into (FrameTessellator), the serial
+// warm-up pass that sets the reference triangle counts (warm_up), and --repeats auto (choose_repeats).
+//
+// Why apart from the main: the measurement (main_job_run.hpp) and the report read the same Workload; how it
+// is made is one concept, the timing loops another.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/id_range.hpp"
+#include "schedulers/main_job_options.hpp"
+#include "schedulers/registry.hpp"
+#include "tessellate/camera_path.hpp"
+#include "tessellate/scene_generator.hpp"
+#include "tessellate/surface_tessellator.hpp"
+
+namespace frontsteal::main_job {
+
+namespace sc = frontsteal::sched;
+
+// The workload: the scene prepared once, its per-frame views, and one output buffer per surface.
+struct Workload {
+  ts::Model model;
+  std::vector<ts::PreparedSurface> prepared;
+  std::vector<ts::TriangleBuffers> buffers;  // per surface: every scheduler writes the same buffers
+  std::vector<ts::Camera> cameras;
+  std::vector<ts::Frustum> frusta;
+  ts::TessellationSettings settings;
+  std::vector<std::uint64_t> serial_triangles;  // per frame, from the serial loop: the reference
+  std::vector<std::uint64_t> serial_inconsistencies;  // per frame: surfaces whose tessellation audit failed
+  std::vector<std::uint64_t> serial_capped;           // per frame: surfaces held at the step cap
+};
+
+// The scene loaded and prepared, its camera path, and the hints for the spatial partitions (patch centres,
+// and the cost estimate of the path's first, overview, view).
+struct PreparedScene {
+  Workload wl;
+  ts::DenseRegion dense;
+  sc::WorkloadHints hints;
+};
+
+// Exits 2 when the scene cannot be loaded or is empty (before any measurement: nothing to clean up).
+PreparedScene prepare_scene(const Options& o, unsigned cores);
+
+// Tessellates surface `id` for frame `f` with worker w's scratch into the surface's own buffer, and keeps per
+// surface what the audits need: its triangle count, whether the tessellation's own audit (tiling, area,
+// tracing: surface_tessellator.hpp, step 6) failed, and whether the step cap held the deviation bound back.
+class FrameTessellator {
+ public:
+  FrameTessellator(Workload& wl, WorkerId max_workers);
+
+  void run(int f, ItemId id, WorkerId w);
+  std::uint64_t frame_triangles() const;
+  std::uint64_t count_inconsistent() const { return count(inconsistent_); }
+  std::uint64_t count_capped() const { return count(capped_); }
+  std::string first_inconsistent() const;  // the name of the first surface whose audit failed ("" if none)
+
+ private:
+  static std::uint64_t count(const std::vector<std::uint8_t>& flags);
+  Workload& wl_;
+  std::vector<ts::TessellationScratch> scratch_;
+  std::vector<std::uint32_t> triangles_;
+  std::vector<std::uint8_t> inconsistent_, capped_;
+};
+
+// The serial warm-up pass: the reference triangle counts (and audit counts) per frame into `wl`, and per frame
+// and surface the measured time (ns) and the cost estimate, for the round-robin cost spread
+// (round_robin_spread.hpp).
+struct WarmUp {
+  std::vector<std::vector<double>> item_ns, item_estimate;
+  double seconds = 0;  // the pass's wall time: about T1
+};
+WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess);
+
+// --repeats auto: one round of repeats costs about T1 for the serial loop plus T1 / min(P, cores) per
+// scheduler and P (plus the 5 ms settling pause); the warm-up pass gives T1. Ten repeats when they fit in
+// the budget (the bootstrap interval of a median is informative from about ten pairs), else as many as
+// fit, but never fewer than 5, the count earlier results were measured with. Sets o.repeats; returns the note.
+std::string choose_repeats(Options& o, double warm_s, unsigned cores);
+
+}  // namespace frontsteal::main_job
