@@ -103,7 +103,8 @@ CostTrace record_cost_trace(PathWorkload& wl, int passes, const std::string& mac
   return t;
 }
 
-std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptions& o, double* serial_ms) {
+std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptions& o, double* serial_ms,
+                                            MeasurementNoise* noise) {
   const ItemId n = wl.surfaces();
   WorkerId max_p = 1;
   for (WorkerId p : o.threads) max_p = std::max(max_p, p);
@@ -118,7 +119,7 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
   struct Cell {
     MeasuredRun run;
     std::unique_ptr<sched::Scheduler> instance;
-    double busy = 0, available = 0, imbalance_sum = 0;
+    double busy = 0, cpu = 0, available = 0, imbalance_sum = 0;
     std::uint64_t frames = 0;
   };
   std::vector<Cell> cells;
@@ -137,6 +138,7 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
   }
   ExecutionCounter runs(n);
   std::vector<double> serial_path;
+  const noise::ProcSample measure_start = noise::sample_now();
   for (int r = 0; r < o.repeats; ++r) {
     {
       const auto t0 = Clock::now();
@@ -147,6 +149,7 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
     }
     for (Cell& c : cells) {
       double total = 0;
+      const noise::ProcSample before = noise::sample_now();
       for (int f = 0; f < wl.frames(); ++f) {
         auto item = [&](ItemId id, WorkerId w) {
           runs.record(id);
@@ -156,6 +159,7 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
         total += static_cast<double>(st.wall_ns) / 1e6;
         const WorkerFrameStats tot = st.totals();
         c.busy += static_cast<double>(tot.busy_ns);
+        c.cpu += static_cast<double>(tot.cpu_ns);
         c.available += static_cast<double>(st.wall_ns) * static_cast<double>(st.workers.size());
         c.imbalance_sum += st.imbalance();
         ++c.frames;
@@ -168,6 +172,7 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
                                    "triangle count differs from the serial loop's)");
         }
       }
+      c.run.usage += noise::usage_between(before, noise::sample_now());
       c.run.path_ms.push_back(total);
       std::this_thread::sleep_for(std::chrono::milliseconds(5));  // let library runtimes settle
       if (o.progress) {
@@ -177,11 +182,16 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
       }
     }
   }
+  if (noise) {
+    noise->during = noise::usage_between(measure_start, noise::sample_now());
+    noise->serial_path_ms = serial_path;
+  }
   std::vector<MeasuredRun> out;
   for (Cell& c : cells) {
     c.run.median_path_ms = median(c.run.path_ms);
     c.run.frames_per_s = 1000.0 * wl.frames() / c.run.median_path_ms;
     c.run.utilization_pct = c.available > 0 ? 100.0 * c.busy / c.available : 0;
+    c.run.cpu_pct = c.available > 0 ? 100.0 * c.cpu / c.available : 0;
     c.run.imbalance_mean = c.frames ? c.imbalance_sum / static_cast<double>(c.frames) : 0;
     c.run.busy_ms_per_path = c.busy / 1e6 / static_cast<double>(o.repeats);
     out.push_back(std::move(c.run));

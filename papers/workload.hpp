@@ -14,6 +14,7 @@
 #include "core/id_range.hpp"
 #include "core/machine_info.hpp"
 #include "papers/cost_trace.hpp"
+#include "schedulers/noise_monitor.hpp"
 #include "schedulers/scheduler.hpp"
 #include "schedulers/static_scheduler.hpp"
 #include "tessellate/camera_path.hpp"
@@ -71,6 +72,9 @@ struct MeasuredRun {
   double imbalance_mean = 0;      // max/mean busy per frame, averaged
   double busy_ms_per_path = 0;    // Σ over workers of time inside items, per run of the path (mean of repeats)
   std::uint64_t steals = 0, lock_waits = 0;
+  double cpu_pct = 0;             // the workers' thread CPU time / Σ (wall × P): below utilization's busy share
+                                  // when a worker lost its CPU (descheduled, or asleep on a lock)
+  noise::Usage usage;             // the machine while this cell's paths ran, every repeat (noise_monitor.hpp)
 };
 
 struct MeasureOptions {
@@ -81,10 +85,17 @@ struct MeasureOptions {
   std::function<void(const std::string&)> progress;
 };
 
+// The machine around a measurement, for the noise verdict of its comparisons (papers/measured_noise.hpp).
+struct MeasurementNoise {
+  noise::Usage during;                 // from the first repeat's start to the last repeat's end
+  std::vector<double> serial_path_ms;  // the serial loop's path time, per repeat: their spread is noise too
+};
+
 // Interleaved repeats (repeat r of every cell before repeat r+1 of any). Also returns the serial loop's
-// median path time in *serial_ms when given. Throws std::runtime_error on an audit failure.
+// median path time in *serial_ms, and the noise monitor's samples in *noise, when given. Throws
+// std::runtime_error on an audit failure.
 std::vector<MeasuredRun> measure_schedulers(PathWorkload& workload, const MeasureOptions& options,
-                                            double* serial_ms = nullptr);
+                                            double* serial_ms = nullptr, MeasurementNoise* noise = nullptr);
 
 using frontsteal::cpu_model;  // core/machine_info.hpp
 using frontsteal::median;

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 namespace frontsteal::report {
 
@@ -27,6 +28,13 @@ class WrappingFormatter : public CLI::Formatter {
     if (const auto colon = full_type.find(':'); colon != std::string::npos) text += " (" + full_type.substr(colon + 1) + ")";
     if (!full_type.empty() && !opt->get_default_str().empty() && opt->get_default_str() != "[]") text += " [default " + opt->get_default_str() + "]";
     return wrap(text, 78 - get_column_width());
+  }
+  // Subcommands' summaries wrapped like option descriptions (frontsteal-paper's are a paragraph each).
+  std::string make_subcommand(const CLI::App* sub) const override {
+    std::stringstream out;
+    CLI::detail::format_help(out, sub->get_display_name(true), wrap(sub->get_description(), 78 - get_column_width()),
+                             get_column_width());
+    return out.str();
   }
 
  private:
