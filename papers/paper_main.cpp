@@ -24,6 +24,7 @@
 #include "core/paired_comparison.hpp"
 #include "papers/calibration.hpp"
 #include "papers/cost_trace.hpp"
+#include "papers/validate_command.hpp"
 #include "papers/paper_numbers.hpp"
 #include "papers/simulator.hpp"
 #include "papers/workload.hpp"
@@ -938,6 +939,8 @@ int dispatch(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // `validate` parses its own options (papers/validate_command.hpp).
+  if (argc > 1 && std::string_view(argv[1]) == "validate") return fp::run_validate_command(argc - 1, argv + 1);
   const Options o = parse(argc, argv);
   try {
     return dispatch(o);
