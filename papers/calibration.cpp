@@ -6,6 +6,9 @@
 #include <chrono>
 #include <fstream>
 #include <map>
+#include <random>
+#include <time.h>
+#include <type_traits>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
@@ -125,6 +128,84 @@ double lock_ns(int threads) {
   return ns / (static_cast<double>(threads) * kPerThread);
 }
 
+// A waiter's hand-off latency: the holder keeps the lock long enough (1 ms) for the waiter to fall asleep in
+// the futex, stamps the time and unlocks; the waiter stamps the time it holds the lock. Median of `rounds`.
+double lock_wake_latency_ns(int rounds) {
+  std::mutex m;
+  std::atomic<int> round{-1};
+  std::atomic<std::int64_t> unlocked_at{0};
+  std::vector<double> latency;
+  std::thread waiter([&] {
+    for (int r = 0; r < rounds; ++r) {
+      while (round.load(std::memory_order::acquire) != r) {}
+      m.lock();
+      const auto now = Clock::now().time_since_epoch().count();
+      latency.push_back(static_cast<double>(now - unlocked_at.load(std::memory_order::acquire)));
+      m.unlock();
+      round.store(-1 - r - 1, std::memory_order::release);  // "round r done"
+    }
+  });
+  for (int r = 0; r < rounds; ++r) {
+    m.lock();
+    round.store(r, std::memory_order::release);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    unlocked_at.store(Clock::now().time_since_epoch().count(), std::memory_order::release);
+    m.unlock();
+    while (round.load(std::memory_order::acquire) != -1 - r - 1) {}
+  }
+  waiter.join();
+  static_assert(std::is_same_v<Clock::duration, std::chrono::nanoseconds>);
+  return median(latency);
+}
+
+// The per-frame wake-up as worker_team.hpp does it: P threads asleep in atomic wait on a frame counter, the
+// caller bumps it and calls notify_all; each thread stamps when it runs. Returns the median over frames of
+// (latest stamp − earliest stamp) / (P − 1): how much later each further worker starts its frame.
+double wake_skew_ns(unsigned workers, int frames) {
+  std::atomic<std::uint64_t> started{0};
+  std::atomic<std::uint64_t> arrived{0};
+  std::vector<std::int64_t> stamp(workers * 8, 0);
+  std::vector<std::thread> team;
+  for (unsigned w = 0; w < workers; ++w) {
+    team.emplace_back([&, w] {
+      for (std::uint64_t k = 1; k <= static_cast<std::uint64_t>(frames); ++k) {
+        std::uint64_t s = started.load(std::memory_order::acquire);
+        while (s < k) {
+          started.wait(s, std::memory_order::acquire);
+          s = started.load(std::memory_order::acquire);
+        }
+        stamp[w * 8] = Clock::now().time_since_epoch().count();
+        if (arrived.fetch_add(1, std::memory_order::acq_rel) + 1 == k * workers) arrived.notify_all();
+      }
+    });
+  }
+  std::vector<double> skew;
+  for (int f = 1; f <= frames; ++f) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));  // every worker asleep in the futex
+    started.store(static_cast<std::uint64_t>(f), std::memory_order::release);
+    started.notify_all();
+    // The caller sleeps too (as worker_team's does): a spinning caller would hold one of two cores.
+    for (std::uint64_t a = arrived.load(std::memory_order::acquire); a < static_cast<std::uint64_t>(f) * workers;
+         a = arrived.load(std::memory_order::acquire)) {
+      arrived.wait(a, std::memory_order::acquire);
+    }
+    std::int64_t lo = stamp[0], hi = stamp[0];
+    for (unsigned w = 1; w < workers; ++w) {
+      lo = std::min(lo, stamp[w * 8]);
+      hi = std::max(hi, stamp[w * 8]);
+    }
+    skew.push_back(static_cast<double>(hi - lo) / (workers - 1));
+  }
+  for (auto& t : team) t.join();
+  return median(skew);
+}
+
+double thread_cpu_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return 1e9 * static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec);
+}
+
 double fence_cost_ns() {
   constexpr int kFences = 2000000;
   const auto t0 = Clock::now();
@@ -158,6 +239,16 @@ Overheads calibrate(const std::string& machine, const std::string& commit,
       pp.push_back(ping_pong_ns());
     }
   }
+  if (two) {
+    say("calibration: lock hand-off to a sleeping waiter, per-frame wake-up skew of two sleeping workers");
+    std::vector<double> lw, ws;
+    for (int r = 0; r < 3; ++r) {
+      lw.push_back(lock_wake_latency_ns(100));
+      ws.push_back(wake_skew_ns(2, 100));
+    }
+    o.lock_wake_ns = median(lw);
+    o.wake_skew_ns = median(ws);
+  }
   o.lock_uncontended_ns = median(lu);
   o.fence_ns = median(fe);
   if (two) {
@@ -166,6 +257,75 @@ Overheads calibrate(const std::string& machine, const std::string& commit,
   }
   o.assumed = !two;
   return o;
+}
+
+AffinityMeasurement measure_affinity(PathWorkload& wl, int repeats, std::uint64_t seed,
+                                     const std::function<void(const std::string&)>& progress) {
+  constexpr WorkerId kWorkers = 2;
+  const ItemId n = wl.surfaces();
+  wl.prepare_workers(kWorkers);
+  std::mt19937_64 rng(seed);
+  std::vector<WorkerId> last(n, 0);  // the worker that ran each item last
+  std::uint64_t moved_runs = 0, counted_runs = 0;
+  // One run of the path at P = 2; returns Σ thread CPU time in items over frames 1..F−1 (frame 0 reshuffles
+  // after the previous run and is not counted).
+  auto run_path = [&](bool shuffled) {
+    double busy = 0;
+    std::vector<std::vector<ItemId>> lists(kWorkers);
+    for (int f = 0; f < wl.frames(); ++f) {
+      for (auto& l : lists) l.clear();
+      for (ItemId id = 0; id < n; ++id) {
+        const WorkerId w = shuffled ? static_cast<WorkerId>(rng() & 1U) : (id < n / 2 ? 0 : 1);
+        lists[w].push_back(id);
+        if (f > 0 && shuffled) {
+          ++counted_runs;
+          if (w != last[id]) ++moved_runs;
+        }
+        last[id] = w;
+      }
+      double cpu[kWorkers] = {0, 0};
+      auto body = [&](WorkerId w) {
+        const double t0 = thread_cpu_ns();
+        for (ItemId id : lists[w]) wl.tessellate(f, id, w);
+        cpu[w] = thread_cpu_ns() - t0;
+      };
+      std::thread other(body, 1);
+      body(0);
+      other.join();
+      if (f > 0) busy += cpu[0] + cpu[1];
+    }
+    return busy;
+  };
+  AffinityMeasurement a;
+  run_path(false);  // warm-up
+  for (int r = 0; r < repeats; ++r) {
+    double kept = 0, shuffled = 0;
+    if (r % 2 == 0) {
+      kept = run_path(false);
+      shuffled = run_path(true);
+    } else {
+      shuffled = run_path(true);
+      kept = run_path(false);
+    }
+    a.kept_busy_ms.push_back(kept / 1e6);
+    a.shuffled_busy_ms.push_back(shuffled / 1e6);
+    if (progress) {
+      progress("affinity: repeat " + std::to_string(r + 1) + ": kept " + std::to_string(kept / 1e6) + " ms, shuffled " +
+               std::to_string(shuffled / 1e6) + " ms of CPU in items");
+    }
+  }
+  a.moved_fraction = counted_runs ? static_cast<double>(moved_runs) / static_cast<double>(counted_runs) : 0;
+  const double runs_per_path = static_cast<double>(n) * (wl.frames() - 1);
+  std::vector<double> per_item;
+  for (int r = 0; r < repeats; ++r) {
+    const double moved_cost = a.kept_busy_ms[r] * a.moved_fraction;  // a random half: the kept mean cost
+    a.penalty_per_repeat.push_back((a.shuffled_busy_ms[r] - a.kept_busy_ms[r]) / moved_cost);
+    per_item.push_back(1e6 * (a.shuffled_busy_ms[r] - a.kept_busy_ms[r]) / (runs_per_path * a.moved_fraction));
+  }
+  a.moved_cost_ms = median(a.kept_busy_ms) * a.moved_fraction;
+  a.penalty = median(a.penalty_per_repeat);
+  a.penalty_ns_per_moved_item = median(per_item);
+  return a;
 }
 
 void write_overheads(const Overheads& o, const std::filesystem::path& file) {
@@ -184,7 +344,8 @@ void write_overheads(const Overheads& o, const std::filesystem::path& file) {
   model("chase_lev", o.chase_lev);
   out << "line_transfer_ns " << o.line_transfer_ns << "\nlock_uncontended_ns " << o.lock_uncontended_ns
       << "\nlock_handoff_ns " << o.lock_handoff_ns << "\nfence_ns " << o.fence_ns << "\nidle_round_ns "
-      << o.idle_round_ns << '\n';
+      << o.idle_round_ns << "\nlock_wake_ns " << o.lock_wake_ns << "\nwake_skew_ns " << o.wake_skew_ns
+      << "\naffinity_penalty " << o.affinity_penalty << "\naffinity_measured " << o.affinity_measured << '\n';
 }
 
 Overheads read_overheads(const std::filesystem::path& file) {
@@ -200,7 +361,8 @@ Overheads read_overheads(const std::filesystem::path& file) {
       {"chase_lev.frame_fixed_ns", &o.chase_lev.frame_fixed_ns},
       {"chase_lev.second_worker_ns", &o.chase_lev.second_worker_ns},
       {"line_transfer_ns", &o.line_transfer_ns}, {"lock_uncontended_ns", &o.lock_uncontended_ns},
-      {"lock_handoff_ns", &o.lock_handoff_ns}, {"fence_ns", &o.fence_ns}, {"idle_round_ns", &o.idle_round_ns}};
+      {"lock_handoff_ns", &o.lock_handoff_ns}, {"fence_ns", &o.fence_ns}, {"idle_round_ns", &o.idle_round_ns},
+      {"lock_wake_ns", &o.lock_wake_ns}, {"wake_skew_ns", &o.wake_skew_ns}, {"affinity_penalty", &o.affinity_penalty}};
   std::string line;
   int line_no = 0;
   while (std::getline(in, line)) {
@@ -219,6 +381,7 @@ Overheads read_overheads(const std::filesystem::path& file) {
     if (key == "machine") o.machine = rest;
     else if (key == "commit") o.commit = rest;
     else if (key == "assumed") o.assumed = rest == "1";
+    else if (key == "affinity_measured") o.affinity_measured = rest == "1";
     else if (auto it = numbers.find(key); it != numbers.end()) {
       std::istringstream v(rest);
       if (!(v >> *it->second) || *it->second < 0) throw std::runtime_error(where() + "bad value for " + key);
@@ -247,7 +410,12 @@ std::string describe(const Overheads& o) {
     << o.lock_uncontended_ns << " |\n| lock, contended (per acquisition) | " << o.lock_handoff_ns
     << " |\n| seq_cst fence | " << o.fence_ns << " |\n| steal (4 transfers + fence, derived) | " << o.steal_ns()
     << " |\n| idle round pause (assumed) | " << o.idle_round_ns << " |\n| each worker beyond 2, per frame (assumed: "
-       "1 µs + 2 transfers) | " << o.extra_worker_ns() << " |\n";
+       "1 µs + 2 transfers) | " << o.extra_worker_ns() << " |\n| lock hand-off to a sleeping waiter | "
+    << o.lock_wake_ns << " |\n| wake-up skew per further worker, per frame | " << o.wake_skew_ns
+    << " |\n\nCache affinity: an item that changed worker since the previous frame costs "
+    << o.affinity_penalty * 100 << " % more"
+    << (o.affinity_measured ? " (measured: lists kept vs shuffled at P = 2).\n"
+                            : " (ASSUMED: not measured in this calibration).\n");
   if (o.assumed) s << "\nTwo-thread costs are ASSUMED defaults (one hardware thread: not measurable).\n";
   return s.str();
 }

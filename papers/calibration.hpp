@@ -12,6 +12,15 @@
 //   lock_handoff_ns          the same under contention from another core: time per acquisition while two
 //                            threads hammer one lock (futex sleep and wake included).
 //   fence_ns                 one std::atomic_thread_fence(seq_cst) (MFENCE or a locked instruction on x86).
+//   lock_wake_ns             a waiter that found the lock held sleeps in the futex: from the holder's unlock
+//                            to the waiter running with the lock (median of hand-offs to a sleeping thread).
+//   wake_skew_ns             the per-frame wake-up: worker w (w ≥ 1) starts its frame w × this later than worker
+//                            0 (notify_all wakes the sleepers one after another; median over frames).
+//   affinity_penalty         cache affinity: an item run by another worker than in the previous frame costs
+//                            (1 + this) × its traced cost. Measured on the real workload, not by calibrate():
+//                            measure_affinity runs one path at P = 2 with each worker's list kept vs shuffled
+//                            every frame (paired, interleaved; thread CPU time, so preemption does not count).
+// The three default to 0 (term off): a calibration file written before they existed replays as it did.
 // Derived (counted from the protocol's accesses to the victim's lines, not measured as a whole):
 //   steal = 4 line transfers (LockList CAS, Front/End read, End store, ListTransient + Front re-read) + fence;
 //   a busy LockList or a lost Chase–Lev CAS = 1 transfer; an empty victim = 2; Chase–Lev steal = 4 transfers.
@@ -21,7 +30,9 @@
 
 #include <filesystem>
 #include <functional>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace frontsteal::papers {
 
@@ -38,6 +49,10 @@ struct Overheads {
   double lock_handoff_ns = 150;
   double fence_ns = 20;
   double idle_round_ns = 200;
+  double lock_wake_ns = 0;
+  double wake_skew_ns = 0;
+  double affinity_penalty = 0;      // fraction of the item's cost
+  bool affinity_measured = false;   // false: affinity_penalty is not a measurement of this machine
   double extra_worker_ns() const { return 1000 + 2 * line_transfer_ns; }
   double frame_ns(const ModelCosts& m, unsigned workers) const {
     return m.frame_fixed_ns + (workers >= 2 ? m.second_worker_ns : 0) +
@@ -55,6 +70,21 @@ struct Overheads {
 // Runs the microbenchmarks (about 5 s). `progress` gets a line per step (may be empty).
 Overheads calibrate(const std::string& machine, const std::string& commit,
                     const std::function<void(const std::string&)>& progress);
+
+// The affinity measurement (see affinity_penalty above). Paired: repeat r runs the path with kept lists and
+// with shuffled lists back to back (which one first alternates); the penalty is the median over repeats of
+// (busy_shuffled − busy_kept) / (traced cost of the items that changed worker), busy in thread CPU time.
+struct AffinityMeasurement {
+  std::vector<double> kept_busy_ms, shuffled_busy_ms;  // per repeat: Σ over workers of CPU time in items
+  std::vector<double> penalty_per_repeat;             // fraction, per repeat
+  double moved_fraction = 0;                          // of item runs, shuffled lists (kept: 0 after frame 0)
+  double moved_cost_ms = 0;                           // per path: serial cost of the item runs that moved
+  double penalty = 0;                                 // median of penalty_per_repeat
+  double penalty_ns_per_moved_item = 0;               // the same in ns per moved item
+};
+class PathWorkload;
+AffinityMeasurement measure_affinity(PathWorkload& workload, int repeats, std::uint64_t seed,
+                                     const std::function<void(const std::string&)>& progress);
 
 void write_overheads(const Overheads& o, const std::filesystem::path& file);
 Overheads read_overheads(const std::filesystem::path& file);  // throws std::runtime_error naming the line

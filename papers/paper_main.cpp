@@ -13,6 +13,7 @@
 #include <iterator>
 #include <iostream>
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 #include "papers/fig8_curves.hpp"
@@ -20,6 +21,7 @@
 #include "papers/paper_run.hpp"
 #include "papers/table1_report.hpp"
 #include "papers/table2_report.hpp"
+#include "papers/validate_command.hpp"
 #include "render/headless_gl.hpp"
 #include "tessellate/model_format.hpp"
 
@@ -69,6 +71,8 @@ int run_all(fp::PaperRun& run) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // `validate` parses its own options (papers/validate_command.hpp).
+  if (argc > 1 && std::string_view(argv[1]) == "validate") return fp::run_validate_command(argc - 1, argv + 1);
   std::vector<fp::SubcommandSummary> summaries;
   for (const Subcommand& s : kSubcommands) summaries.push_back({s.name, s.summary});
   fp::PaperRun run(fp::parse_options(argc, argv, summaries), FRONTSTEAL_GIT_COMMIT, FRONTSTEAL_DATA_DIR);

@@ -22,6 +22,27 @@ struct Event {
 };
 using EventQueue = std::priority_queue<Event, std::vector<Event>, std::greater<Event>>;
 
+// What an item costs on a worker: its traced cost, the affinity penalty when another worker ran it in the
+// previous frame, times the worker's slowdown. One per frame; `previous` is updated between frames.
+struct ItemCharge {
+  const std::vector<double>& cost;
+  const std::vector<WorkerId>& previous;  // per item: the worker of the previous frame, or kNoWorker
+  double penalty = 0;
+  const std::vector<double>& slowdown;    // per worker (empty: 1)
+  SimulatedRun& totals;
+  static constexpr WorkerId kNoWorker = ~WorkerId{0};
+
+  double operator()(ItemId id, WorkerId w) const {
+    double c = cost[id];
+    if (previous[id] != kNoWorker && previous[id] != w) {
+      ++totals.affinity_misses;
+      totals.affinity_penalty_ns += penalty * c;
+      c *= 1 + penalty;
+    }
+    return slowdown.empty() ? c : c * slowdown[w];
+  }
+};
+
 // What every model reports for one frame.
 struct FrameOutcome {
   double last_finish_ns = 0;
@@ -29,29 +50,30 @@ struct FrameOutcome {
   std::vector<std::vector<ItemId>> ran;    // per worker: the items it ran, in order
 };
 
-FrameOutcome run_static(const std::vector<double>& cost, const sched::Assignment& lists, const ModelCosts& mc) {
+FrameOutcome run_static(const ItemCharge& cost, const sched::Assignment& lists, const ModelCosts& mc, double skew) {
   FrameOutcome out;
   out.busy_ns.assign(lists.size(), 0);
   out.ran = lists;
   for (std::size_t w = 0; w < lists.size(); ++w) {
-    double t = 0;
+    double t = static_cast<double>(w) * skew;
     for (ItemId id : lists[w]) {
-      out.busy_ns[w] += cost[id];
-      t += cost[id] + mc.item_ns;
+      const double c = cost(id, static_cast<WorkerId>(w));
+      out.busy_ns[w] += c;
+      t += c + mc.item_ns;
     }
     out.last_finish_ns = std::max(out.last_finish_ns, t);
   }
   return out;
 }
 
-FrameOutcome run_queue(const std::vector<double>& cost, WorkerId p, const Overheads& o, SimulatedRun& totals) {
-  const auto n = static_cast<ItemId>(cost.size());
+FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, SimulatedRun& totals) {
+  const auto n = static_cast<ItemId>(cost.cost.size());
   const ItemId grain = sched::default_grain(n, p);
   FrameOutcome out;
   out.busy_ns.assign(p, 0);
   out.ran.assign(p, {});
   EventQueue events;
-  for (WorkerId w = 0; w < p; ++w) events.push({0, w});
+  for (WorkerId w = 0; w < p; ++w) events.push({w * o.wake_skew_ns, w});
   ItemId cursor = 0;
   double free_at = 0;
   WorkerId last_holder = p;  // none yet
@@ -62,9 +84,10 @@ FrameOutcome run_queue(const std::vector<double>& cost, WorkerId p, const Overhe
       out.last_finish_ns = std::max(out.last_finish_ns, e.at);
       continue;
     }
-    const double granted = std::max(e.at, free_at);
+    double granted = e.at;
     double hold = o.lock_uncontended_ns + (last_holder != p && last_holder != e.worker ? o.line_transfer_ns : 0);
-    if (granted > e.at) {
+    if (free_at > e.at) {  // held: the worker sleeps in the futex until the holder's unlock wakes it
+      granted = free_at + o.lock_wake_ns;
       hold = o.lock_handoff_ns;
       ++totals.lock_waits;
     }
@@ -74,9 +97,10 @@ FrameOutcome run_queue(const std::vector<double>& cost, WorkerId p, const Overhe
     cursor = std::min<ItemId>(n, cursor + grain);
     double t = granted + hold;
     for (ItemId id = first; id < cursor; ++id) {
-      out.busy_ns[e.worker] += cost[id];
+      const double c = cost(id, e.worker);
+      out.busy_ns[e.worker] += c;
       out.ran[e.worker].push_back(id);
-      t += cost[id] + o.queue.item_ns;
+      t += c + o.queue.item_ns;
     }
     events.push({t, e.worker});
   }
@@ -99,7 +123,7 @@ struct StealingState {
   std::vector<std::vector<WorkerId>> victim_orders;
 };
 
-FrameOutcome run_stealing(const std::vector<double>& cost, StealingState& state, const Overheads& o,
+FrameOutcome run_stealing(const ItemCharge& cost, StealingState& state, const Overheads& o,
                           bool plant_lost_steal, SimulatedRun& totals) {
   const auto p = static_cast<WorkerId>(state.lists.size());
   struct Worker {
@@ -121,7 +145,7 @@ FrameOutcome run_stealing(const std::vector<double>& cost, StealingState& state,
   out.busy_ns.assign(p, 0);
   out.ran.assign(p, {});
   EventQueue events;
-  for (WorkerId w = 0; w < p; ++w) events.push({0, w});
+  for (WorkerId w = 0; w < p; ++w) events.push({w * o.wake_skew_ns, w});
   while (!events.empty()) {
     const Event e = events.top();
     events.pop();
@@ -135,9 +159,10 @@ FrameOutcome run_stealing(const std::vector<double>& cost, StealingState& state,
     if (me.front < me.end) {  // owner: claim the item at Front and run it
       const ItemId id = me.list[me.front++];
       --unclaimed;
-      out.busy_ns[e.worker] += cost[id];
+      const double c = cost(id, e.worker);
+      out.busy_ns[e.worker] += c;
       out.ran[e.worker].push_back(id);
-      events.push({e.at + cost[id] + o.stealing.item_ns, e.worker});
+      events.push({e.at + c + o.stealing.item_ns, e.worker});
       continue;
     }
     if (unclaimed <= 0 || p == 1) {  // every list is empty: the worker is done
@@ -163,9 +188,9 @@ FrameOutcome run_stealing(const std::vector<double>& cost, StealingState& state,
   return out;
 }
 
-FrameOutcome run_chase_lev(const std::vector<double>& cost, WorkerId p, const Overheads& o, std::mt19937_64& rng,
+FrameOutcome run_chase_lev(const ItemCharge& cost, WorkerId p, const Overheads& o, std::mt19937_64& rng,
                            SimulatedRun& totals) {
-  const auto n = static_cast<ItemId>(cost.size());
+  const auto n = static_cast<ItemId>(cost.cost.size());
   struct Worker {
     std::vector<IdRange> deque;  // [top, size): top = oldest (largest)
     std::size_t top = 0;
@@ -185,7 +210,7 @@ FrameOutcome run_chase_lev(const std::vector<double>& cost, WorkerId p, const Ov
   out.busy_ns.assign(p, 0);
   out.ran.assign(p, {});
   EventQueue events;
-  for (WorkerId w = 0; w < p; ++w) events.push({0, w});
+  for (WorkerId w = 0; w < p; ++w) events.push({w * o.wake_skew_ns, w});
   std::uniform_int_distribution<WorkerId> other(0, p > 1 ? p - 2 : 0);
   while (!events.empty()) {
     const Event e = events.top();
@@ -198,9 +223,10 @@ FrameOutcome run_chase_lev(const std::vector<double>& cost, WorkerId p, const Ov
     if (me.running.begin < me.running.end) {
       const ItemId id = me.running.begin++;
       --remaining;
-      out.busy_ns[e.worker] += cost[id];
+      const double c = cost(id, e.worker);
+      out.busy_ns[e.worker] += c;
       out.ran[e.worker].push_back(id);
-      events.push({e.at + cost[id] + o.chase_lev.item_ns, e.worker});
+      events.push({e.at + c + o.chase_lev.item_ns, e.worker});
       continue;
     }
     if (me.top < me.deque.size()) {  // take the newest range, split off upper halves down to one item
@@ -244,6 +270,9 @@ SimulatedRun simulate(const CostTrace& trace, const Overheads& o, const Simulati
   const auto n = static_cast<ItemId>(trace.surfaces());
   const WorkerId p = opt.workers;
   if (p == 0) throw std::invalid_argument("simulate: at least one worker");
+  if (!opt.worker_slowdown.empty() && opt.worker_slowdown.size() != p) {
+    throw std::invalid_argument("simulate: worker_slowdown needs one factor per worker");
+  }
   if (opt.model == Model::static_list) {
     if (!opt.assignment) throw std::invalid_argument("simulate: the static model needs an assignment");
     sched::require_partition(*opt.assignment, p, n);
@@ -269,12 +298,17 @@ SimulatedRun simulate(const CostTrace& trace, const Overheads& o, const Simulati
   std::mt19937_64 chase_rng(opt.seed);
   double busy_total = 0, available = 0, imbalance_sum = 0;
   std::vector<int> runs(n);
+  std::vector<WorkerId> previous(n, ItemCharge::kNoWorker);
+  const double penalty = opt.plant_ignore_affinity ? 0.0 : o.affinity_penalty;
   for (std::size_t f = 0; f < trace.frames(); ++f) {
-    const std::vector<double>& cost = trace.cost_ns[f];
+    const ItemCharge cost{trace.cost_ns[f], previous, penalty, opt.worker_slowdown, run};
     FrameOutcome fo;
     const ModelCosts* mc = nullptr;
     switch (opt.model) {
-      case Model::static_list: fo = run_static(cost, *opt.assignment, o.static_list); mc = &o.static_list; break;
+      case Model::static_list:
+        fo = run_static(cost, *opt.assignment, o.static_list, o.wake_skew_ns);
+        mc = &o.static_list;
+        break;
       case Model::queue: fo = run_queue(cost, p, o, run); mc = &o.queue; break;
       case Model::stealing: fo = run_stealing(cost, stealing, o, opt.plant_lost_steal, run); mc = &o.stealing; break;
       case Model::chase_lev: fo = run_chase_lev(cost, p, o, chase_rng, run); mc = &o.chase_lev; break;
@@ -293,6 +327,9 @@ SimulatedRun simulate(const CostTrace& trace, const Overheads& o, const Simulati
       for (ItemId id : list) ++runs[id];
     }
     if (std::any_of(runs.begin(), runs.end(), [](int c) { return c != 1; })) ++run.audit_failures;
+    for (WorkerId w = 0; w < p; ++w) {
+      for (ItemId id : fo.ran[w]) previous[id] = w;
+    }
     if (opt.model == Model::stealing) {  // next lists: what each worker ran, in id order (duplicates to the first)
       std::vector<char> taken(n, 0);
       for (WorkerId w = 0; w < p; ++w) {

@@ -20,7 +20,12 @@
 //   chase-lev  lazy binary splitting from contiguous blocks every frame; an idle worker steals the oldest
 //              (largest) range of a random victim for `steal_chase_lev`; two thieves on one victim within that
 //              time: the later one loses the CAS (`steal_busy`). Per item `item_chase_lev`.
-// Every model adds the per-frame cost of waking and joining P workers (Overheads::frame_ns).
+// Every model adds the per-frame cost of waking and joining P workers (Overheads::frame_ns), and starts worker w
+// its frame w × wake_skew_ns late (notify_all wakes the sleepers one after another).
+// Cache affinity: an item run by another worker than the one that ran it in the previous frame costs
+// (1 + affinity_penalty) × its traced cost (the first frame has no previous worker: no penalty). Interference:
+// worker w's item costs are multiplied by worker_slowdown[w] (a co-runner sharing its core).
+// A waiter on the queue's lock sleeps: it holds the lock lock_wake_ns after the holder let it go.
 // Each simulated frame is audited: every item exactly once (the negative control plants a lost update).
 #pragma once
 
@@ -43,6 +48,8 @@ struct SimulationOptions {
   const sched::Assignment* assignment = nullptr;  // static_list: the lists (required)
   std::uint64_t seed = 1;                          // victim orders
   bool plant_lost_steal = false;  // negative control: a thief copies a share but never lowers the victim's End
+  std::vector<double> worker_slowdown{};  // per worker, ≥ 1: item costs × this (empty: 1 for every worker)
+  bool plant_ignore_affinity = false;   // negative control: the affinity penalty is never charged
 };
 
 struct SimulatedRun {
@@ -52,6 +59,8 @@ struct SimulatedRun {
   double utilization_pct = 0;   // Σ item costs / Σ (frame × P)
   double imbalance_mean = 0;    // max/mean busy per frame
   std::uint64_t steals = 0, failed_steals = 0, lock_waits = 0;
+  std::uint64_t affinity_misses = 0;  // item runs on another worker than in the previous frame (after frame 0)
+  double affinity_penalty_ns = 0;     // what those cost beyond their traced cost
   std::uint64_t audit_failures = 0;  // frames in which some item did not run exactly once
 };
 

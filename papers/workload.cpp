@@ -27,8 +27,12 @@ PathWorkload::PathWorkload(const WorkloadOptions& options) : options_(options) {
   triangles_.assign(prepared_.size(), 0);
   settings_.pixel_tolerance = options.tolerance_px;
   const tess::Box box = tess::model_box(model_);
+  const auto kind = tess::camera_path_named(options.path);
+  if (!kind) throw std::invalid_argument("unknown camera path '" + options.path + "'");
+  const tess::DenseRegion dense = tess::densest_region(model_);
   for (int f = 0; f < options.frames; ++f) {
-    cameras_.push_back(tess::camera_on_path(box, f, options.frames, options.width, options.height));
+    // orbit-then-zoom is camera_on_path itself, as in the main job
+    cameras_.push_back(tess::camera_on(*kind, box, f, options.frames, options.width, options.height, &dense));
     frusta_.push_back(tess::Frustum::of(cameras_.back()));
   }
   // The hints of the main job: patch centres, and the cost estimate of the path's first (overview) view.
@@ -57,9 +61,11 @@ std::uint64_t PathWorkload::frame_triangles() const {
   return t;
 }
 
-CostTrace record_cost_trace(PathWorkload& wl, int passes, const std::string& machine, const std::string& commit) {
+CostTrace record_cost_trace(PathWorkload& wl, int passes, const std::string& machine, const std::string& commit,
+                            bool median_of_passes) {
   CostTrace t;
   t.scene = wl.options().scene;
+  if (wl.options().path != "orbit-then-zoom") t.path = wl.options().path;  // the default keeps its old spelling
   t.width = wl.options().width;
   t.height = wl.options().height;
   t.tolerance_px = wl.options().tolerance_px;
@@ -97,7 +103,8 @@ CostTrace record_cost_trace(PathWorkload& wl, int passes, const std::string& mac
   for (int f = 0; f < wl.frames(); ++f) {
     for (ItemId id = 0; id < n; ++id) {
       const auto& v = samples[f][id];
-      t.cost_ns[f][id] = std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+      t.cost_ns[f][id] =
+          median_of_passes ? median(v) : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
     }
   }
   return t;

@@ -25,6 +25,7 @@ namespace frontsteal::papers {
 
 struct WorkloadOptions {
   std::string scene = "plant:15906";
+  std::string path = "orbit-then-zoom";  // a camera path of tessellate/camera_path.hpp, by name
   int frames = 24;
   int width = 1280, height = 720;
   double tolerance_px = 1;
@@ -60,7 +61,10 @@ class PathWorkload {
 
 // Serial loop over every frame, `passes` times after a warm-up pass; per surface the mean time (the mean,
 // not the median: interrupts and cache misses cost real frames their time too).
-CostTrace record_cost_trace(PathWorkload& workload, int passes, const std::string& machine, const std::string& commit);
+// median_of_passes: per surface the median of the passes instead (for a machine shared with other work, where a
+// preempted pass would otherwise charge its surface the time another process ran).
+CostTrace record_cost_trace(PathWorkload& workload, int passes, const std::string& machine, const std::string& commit,
+                            bool median_of_passes = false);
 
 struct MeasuredRun {
   std::string scheduler;

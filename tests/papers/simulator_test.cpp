@@ -181,3 +181,105 @@ TEST_CASE("stealing and Chase-Lev terminate when single items are left to steal"
     CHECK(r.frame_ns.size() == 3);
   }
 }
+
+// ---- the terms added for validation (issue 17 §5): cache affinity, worker slowdown, wake-up skew, lock wake ----
+
+TEST_CASE("affinity: the penalty is charged exactly when an item changes worker, and ignoring it is caught") {
+  // Queue, P = 2, grain 1, no scheduler costs. Frame 0 (all 10): worker 0 runs {0, 2}, worker 1 {1, 3}; no
+  // previous frame, no penalty. Frame 1: item 0 costs 30, so worker 1 runs {1, 2, 3}: item 2 moved (0 → 1) and
+  // costs 10 × 1.5 = 15. Worker 1: 10 + 15 + 10 = 35; worker 0: 30. Path: 20 + 35.
+  const fp::CostTrace t = trace_of({{10, 10, 10, 10}, {30, 10, 10, 10}});
+  fp::Overheads o = free_overheads();
+  o.affinity_penalty = 0.5;
+  const fp::SimulatedRun r = fp::simulate(t, o, {.model = fp::Model::queue, .workers = 2});
+  CHECK(r.audit_failures == 0);
+  CHECK(r.affinity_misses == 1);
+  CHECK(r.affinity_penalty_ns == Approx(5));
+  CHECK(r.path_ns == Approx(55));
+  // Negative control: a model that ignores the penalty predicts 50, which the check above would reject.
+  fp::SimulationOptions planted{.model = fp::Model::queue, .workers = 2};
+  planted.plant_ignore_affinity = true;
+  const fp::SimulatedRun p = fp::simulate(t, o, planted);
+  CHECK(p.path_ns == Approx(50));
+  CHECK(p.path_ns != Approx(r.path_ns));
+}
+
+TEST_CASE("affinity: lists that stay with their worker never pay; at P = 1 nothing ever moves") {
+  const fp::CostTrace t = trace_of({{10, 20, 30, 40}, {40, 30, 20, 10}, {5, 5, 5, 5}});
+  fp::Overheads o = free_overheads();
+  o.affinity_penalty = 1.0;
+  const auto rr = frontsteal::sched::round_robin_assignment(4, 2);
+  const fp::SimulatedRun s = fp::simulate(t, o, {.model = fp::Model::static_list, .workers = 2, .assignment = &rr});
+  CHECK(s.affinity_misses == 0);
+  CHECK(s.path_ns == Approx(60 + 60 + 10));  // round robin: {0, 2} and {1, 3}
+  for (fp::Model m : {fp::Model::queue, fp::Model::stealing, fp::Model::chase_lev}) {
+    const fp::SimulatedRun one = fp::simulate(t, o, {.model = m, .workers = 1});
+    CHECK(one.affinity_misses == 0);
+    CHECK(one.path_ns == Approx(100 + 100 + 20));
+  }
+}
+
+TEST_CASE("interference: a slowed worker's items take longer; a slowdown per worker is required") {
+  // Round robin at P = 2: worker 0 runs items 0 and 2 at half speed: 2 × (10 + 10) = 40; worker 1: 20.
+  const fp::CostTrace t = trace_of({{10, 10, 10, 10}});
+  const auto rr = frontsteal::sched::round_robin_assignment(4, 2);
+  fp::SimulationOptions so{.model = fp::Model::static_list, .workers = 2, .assignment = &rr};
+  so.worker_slowdown = {2.0, 1.0};
+  CHECK(fp::simulate(t, free_overheads(), so).path_ns == Approx(40));
+  so.worker_slowdown = {1.0, 1.0};  // negative control: no slowdown, the frame is the balanced 20
+  CHECK(fp::simulate(t, free_overheads(), so).path_ns == Approx(20));
+  so.worker_slowdown = {2.0};
+  CHECK_THROWS_AS(fp::simulate(t, free_overheads(), so), std::invalid_argument);
+}
+
+TEST_CASE("wake-up: worker w starts its frame w x wake_skew_ns late") {
+  const fp::CostTrace t = trace_of({{10, 10, 10, 10}});
+  const auto rr = frontsteal::sched::round_robin_assignment(4, 2);
+  fp::Overheads o = free_overheads();
+  o.wake_skew_ns = 3;
+  CHECK(fp::simulate(t, o, {.model = fp::Model::static_list, .workers = 2, .assignment = &rr}).path_ns ==
+        Approx(23));
+  o.wake_skew_ns = 0;  // negative control: without the skew the frame is 20
+  CHECK(fp::simulate(t, o, {.model = fp::Model::static_list, .workers = 2, .assignment = &rr}).path_ns ==
+        Approx(20));
+}
+
+TEST_CASE("queue: a waiter sleeps and gets the lock lock_wake_ns after the holder's release") {
+  // Two items of 10, grain 1. Worker 0 takes the lock at 0 for 5 and runs item 0 until 15. Worker 1 asks at 0,
+  // sleeps, is granted at 5 + 7 = 12, holds for the hand-off 4 and runs item 1 from 16 to 26.
+  const fp::CostTrace t = trace_of({{10, 10}});
+  fp::Overheads o = free_overheads();
+  o.lock_uncontended_ns = 5;
+  o.lock_handoff_ns = 4;
+  o.lock_wake_ns = 7;
+  const fp::SimulatedRun r = fp::simulate(t, o, {.model = fp::Model::queue, .workers = 2});
+  CHECK(r.lock_waits == 1);
+  CHECK(r.path_ns == Approx(26));
+  o.lock_wake_ns = 0;  // negative control: an immediate hand-off gives 5 + 4 + 10 = 19
+  CHECK(fp::simulate(t, o, {.model = fp::Model::queue, .workers = 2}).path_ns == Approx(19));
+}
+
+TEST_CASE("calibration files carry the new constants, and files without them read as the terms off") {
+  const auto file = std::filesystem::temp_directory_path() / "frontsteal-calibration-terms-test.txt";
+  fp::Overheads o;
+  o.lock_wake_ns = 4321;
+  o.wake_skew_ns = 12.5;
+  o.affinity_penalty = 0.25;
+  o.affinity_measured = true;
+  fp::write_overheads(o, file);
+  const fp::Overheads back = fp::read_overheads(file);
+  CHECK(back.lock_wake_ns == Approx(4321));
+  CHECK(back.wake_skew_ns == Approx(12.5));
+  CHECK(back.affinity_penalty == Approx(0.25));
+  CHECK(back.affinity_measured);
+  {
+    std::ofstream old(file);
+    old << "frontsteal-calibration 1\nmachine m\nline_transfer_ns 80\n";
+  }
+  const fp::Overheads old = fp::read_overheads(file);
+  CHECK(old.affinity_penalty == 0);
+  CHECK_FALSE(old.affinity_measured);
+  CHECK(old.lock_wake_ns == 0);
+  CHECK(old.wake_skew_ns == 0);
+  std::filesystem::remove(file);
+}

@@ -1,0 +1,75 @@
+// validation.hpp — does the simulator agree with measurement? Predictions of the main job's path times
+// (schedulers/frontsteal_main.cpp, results in frontsteal.json) from cost traces, against what it measured.
+//
+// Held out: the model's constants come from microbenchmarks (calibration.hpp) and from ONE measured set, the
+// calibration set (a path without interference); every other set is predicted without refitting anything.
+// The one constant taken from the calibration set is `trace_scale`: the main job's serial loop time there over
+// the trace's Σ costs of the same path (the trace is recorded on another day, on a machine in another state).
+// Interference is an input, not a fit: the co-runner's measured core share s (frontsteal.json) makes the worker
+// that shares its core (worker 0, pinned) 1 / (1 − s) slower.
+//
+// Error of a cell: 100 × (predicted − measured) / measured, path times (median of the repeats).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/id_range.hpp"
+#include "papers/calibration.hpp"
+#include "papers/cost_trace.hpp"
+#include "papers/simulator.hpp"
+
+namespace frontsteal::papers {
+
+// One scheduler at one P of a main-job run.
+struct MeasuredCell {
+  std::string scheduler;
+  WorkerId workers = 0;
+  double path_ms = 0;     // median of the repeats
+  double spread_pct = 0;  // the repeats' spread (max/min − 1), as the main job reports it
+};
+
+// One frontsteal.json: a path, with or without interference.
+struct MeasuredSet {
+  std::string name;                 // the directory it came from, e.g. walkthrough-pinned
+  std::string path, scene;
+  bool interference = false;
+  double co_runner_share = 0;       // of one core, measured while the schedulers ran (0 without interference)
+  double serial_ms = 0;             // the serial loop's median path time (co-runner paused)
+  std::vector<MeasuredCell> cells;
+};
+
+// Reads the fields above from a main-job JSON (schema 2, docs/results-schema.md); throws std::runtime_error
+// naming the file and the missing key.
+MeasuredSet read_measured_set(const std::filesystem::path& json_file, const std::string& name);
+
+// The simulator's model of a registry scheduler; nullopt when it has none.
+std::optional<Model> model_of(const std::string& scheduler);
+
+// Worker slowdowns of a set at P workers: worker 0 shares its core with the co-runner.
+std::vector<double> slowdown_of(const MeasuredSet& set, WorkerId workers);
+
+// The predicted path time (ms) of `scheduler` at `workers` on `trace` scaled by `trace_scale`.
+double predict_path_ms(const CostTrace& trace, double trace_scale, const Overheads& overheads,
+                       const std::string& scheduler, WorkerId workers, const std::vector<double>& slowdown,
+                       std::uint64_t seed);
+
+double error_pct(double predicted, double measured);  // throws std::invalid_argument when measured ≤ 0
+
+struct ErrorSummary {
+  std::size_t cells = 0;
+  double median_abs_pct = 0, worst_abs_pct = 0, mean_signed_pct = 0;
+  std::size_t worst_index = 0;  // into the errors given
+};
+ErrorSummary summarize_errors(const std::vector<double>& errors_pct);  // throws on an empty list
+
+// The goal of issue 17 §5.
+inline bool meets_goal(const ErrorSummary& s) { return s.median_abs_pct <= 5.0 && s.worst_abs_pct <= 10.0; }
+
+// The model without the terms added for validation (affinity, lock wake-up, wake-up skew) and without
+// interference: the baseline the validation table compares against.
+Overheads without_new_terms(Overheads o);
+
+}  // namespace frontsteal::papers
