@@ -11,6 +11,8 @@
 #include <thread>
 
 #include "core/machine_info.hpp"
+#include "reporting/json.hpp"
+#include "reporting/results_dir.hpp"
 
 #ifndef FRONTSTEAL_GIT_COMMIT
 #define FRONTSTEAL_GIT_COMMIT "unknown"
@@ -30,9 +32,6 @@ std::string fmt(double x, int digits = 3) {
 
 std::string timing(const Timing& t) { return fmt(t.median) + " [" + fmt(t.min) + ", " + fmt(t.max) + "]"; }
 
-std::string timing_json(const Timing& t) {
-  return "{\"median\": " + fmt(t.median, 6) + ", \"min\": " + fmt(t.min, 6) + ", \"max\": " + fmt(t.max, 6) + "}";
-}
 
 }  // namespace
 
@@ -125,31 +124,40 @@ void write_report(const Options& o, const std::vector<Row>& rows, const std::vec
     }
   }
   {
-    std::ofstream js(dir / "brepmesh.json");
-    js << "{\n  \"kind\": \"measured\", \"date\": \"" << date << "\", \"machine\": \"" << frontsteal::cpu_model()
-       << "\", \"hardware_threads\": " << std::thread::hardware_concurrency() << ", \"commit\": \"" << FRONTSTEAL_GIT_COMMIT
-       << "\", \"load_average_before\": " << load_before << ", \"load_average_after\": " << load_after
-       << ", \"repeats\": " << o.repeats << ", \"angle_rad\": " << o.angle << ", \"max_steps\": " << o.max_steps
-       << ", \"time_unit\": \"ms\",\n  \"rows\": [\n";
-    for (std::size_t k = 0; k < rows.size(); ++k) {
-      const Row& r = rows[k];
-      js << "    {\"file\": \"" << r.file << "\", \"faces\": " << r.faces << ", \"faces_compared\": " << r.faces_compared
-         << ", \"surfaces\": " << r.surfaces << ", \"trimmed\": " << r.trimmed << ", \"diagonal\": " << fmt(r.diagonal, 9)
-         << ", \"eps_fraction\": " << r.eps_fraction << ", \"eps\": " << fmt(r.eps, 9) << ", \"import_ms\": "
-         << fmt(r.import_ms, 6) << ",\n     \"ours\": {\"ms\": " << timing_json(r.ours) << ", \"triangles\": "
-         << r.our_triangles << ", \"capped\": " << r.capped << ", \"inconsistencies\": " << r.inconsistencies
-         << ", \"dev_max\": " << fmt(r.our_dev.max, 6) << ", \"dev_mean\": " << fmt(r.our_dev.mean(), 6)
-         << ", \"samples\": " << r.our_dev.samples << ", \"vertex_residual_max\": " << fmt(r.our_dev.vertex_max, 6) << "},\n     \"brepmesh\": {\"ms_1t\": " << timing_json(r.occt_serial)
-         << ", \"ms_parallel\": " << timing_json(r.occt_parallel) << ", \"ms_1t_compared_faces\": "
-         << (r.timed_imported_only ? timing_json(r.occt_serial_imported) : std::string("null"))
-         << ", \"triangles_compared\": " << r.occt_triangles << ", \"triangles_all\": " << r.occt_triangles_all
-         << ", \"triangles_parallel_compared\": " << r.occt_triangles_parallel
-         << ", \"triangles_default_angle_compared\": " << r.occt_triangles_default_angle
-         << ", \"edge_tolerance_max\": " << fmt(r.edge_tolerance, 6) << ", \"status\": " << r.occt_status
-         << ", \"dev_max\": " << fmt(r.occt_dev.max, 6) << ", \"dev_mean\": " << fmt(r.occt_dev.mean(), 6)
-         << ", \"samples\": " << r.occt_dev.samples << ", \"vertex_residual_max\": " << fmt(r.occt_dev.vertex_max, 6) << "}}" << (k + 1 < rows.size() ? "," : "") << "\n";
+    // nlohmann (report::Json keeps key order): the same keys as the hand-written schema-1 file, plus the
+    // standard header (schema_version, program, kind, commit).
+    report::Json doc = report::document("brepmesh_comparison", 2, "measured", FRONTSTEAL_GIT_COMMIT);
+    doc["date"] = date;
+    doc["machine"] = frontsteal::cpu_model();
+    doc["hardware_threads"] = std::thread::hardware_concurrency();
+    doc["load_average_before"] = load_before;
+    doc["load_average_after"] = load_after;
+    doc["repeats"] = o.repeats;
+    doc["angle_rad"] = o.angle;
+    doc["max_steps"] = o.max_steps;
+    doc["time_unit"] = "ms";
+    auto timing_json = [](const Timing& t) { return report::Json{{"median", t.median}, {"min", t.min}, {"max", t.max}}; };
+    report::Json out_rows = report::Json::array();
+    for (const Row& r : rows) {
+      report::Json ours{{"ms", timing_json(r.ours)}, {"triangles", r.our_triangles}, {"capped", r.capped},
+                        {"inconsistencies", r.inconsistencies}, {"dev_max", r.our_dev.max},
+                        {"dev_mean", r.our_dev.mean()}, {"samples", r.our_dev.samples},
+                        {"vertex_residual_max", r.our_dev.vertex_max}};
+      report::Json occt{{"ms_1t", timing_json(r.occt_serial)}, {"ms_parallel", timing_json(r.occt_parallel)},
+                        {"ms_1t_compared_faces", r.timed_imported_only ? timing_json(r.occt_serial_imported) : report::Json()},
+                        {"triangles_compared", r.occt_triangles}, {"triangles_all", r.occt_triangles_all},
+                        {"triangles_parallel_compared", r.occt_triangles_parallel},
+                        {"triangles_default_angle_compared", r.occt_triangles_default_angle},
+                        {"edge_tolerance_max", r.edge_tolerance}, {"status", r.occt_status},
+                        {"dev_max", r.occt_dev.max}, {"dev_mean", r.occt_dev.mean()}, {"samples", r.occt_dev.samples},
+                        {"vertex_residual_max", r.occt_dev.vertex_max}};
+      out_rows.push_back({{"file", r.file}, {"faces", r.faces}, {"faces_compared", r.faces_compared},
+                          {"surfaces", r.surfaces}, {"trimmed", r.trimmed}, {"diagonal", r.diagonal},
+                          {"eps_fraction", r.eps_fraction}, {"eps", r.eps}, {"import_ms", r.import_ms},
+                          {"ours", std::move(ours)}, {"brepmesh", std::move(occt)}});
     }
-    js << "  ]\n}\n";
+    doc["rows"] = std::move(out_rows);
+    std::ofstream(dir / "brepmesh.json") << doc.dump(2) << '\n';
   }
 }
 

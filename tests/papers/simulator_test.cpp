@@ -204,7 +204,7 @@ TEST_CASE("affinity: the penalty is charged exactly when an item changes worker,
   CHECK(p.path_ns != Approx(r.path_ns));
 }
 
-TEST_CASE("affinity: lists that stay with their worker never pay; at P = 1 nothing ever moves") {
+TEST_CASE("affinity: lists that stay with their worker never pay - at P = 1 nothing ever moves") {
   const fp::CostTrace t = trace_of({{10, 20, 30, 40}, {40, 30, 20, 10}, {5, 5, 5, 5}});
   fp::Overheads o = free_overheads();
   o.affinity_penalty = 1.0;
@@ -219,7 +219,7 @@ TEST_CASE("affinity: lists that stay with their worker never pay; at P = 1 nothi
   }
 }
 
-TEST_CASE("interference: a slowed worker's items take longer; a slowdown per worker is required") {
+TEST_CASE("interference: a slowed worker's items take longer - a slowdown per worker is required") {
   // Round robin at P = 2: worker 0 runs items 0 and 2 at half speed: 2 × (10 + 10) = 40; worker 1: 20.
   const fp::CostTrace t = trace_of({{10, 10, 10, 10}});
   const auto rr = frontsteal::sched::round_robin_assignment(4, 2);

@@ -9,7 +9,7 @@
 
 namespace fp = frontsteal::papers;
 
-TEST_CASE("error: signed percent of the measured value; a non-positive measurement is refused") {
+TEST_CASE("error: signed percent of the measured value - a non-positive measurement is refused") {
   CHECK(fp::error_pct(110, 100) == Approx(10));
   CHECK(fp::error_pct(90, 100) == Approx(-10));
   CHECK(fp::error_pct(100, 100) == Approx(0));
@@ -35,7 +35,7 @@ TEST_CASE("summary: median and worst of the absolute errors, the mean of the sig
   CHECK_THROWS_AS(fp::summarize_errors({}), std::invalid_argument);
 }
 
-TEST_CASE("a main-job result is read; a missing key is refused with its name") {
+TEST_CASE("a main-job result is read - a missing key is refused with its name") {
   const auto file = std::filesystem::temp_directory_path() / "frontsteal-validation-test.json";
   {
     std::ofstream out(file);
@@ -73,7 +73,7 @@ TEST_CASE("a main-job result is read; a missing key is refused with its name") {
   std::filesystem::remove(file);
 }
 
-TEST_CASE("prediction: the trace scaled, the scheduler's model, the slowdown; the old model drops the new terms") {
+TEST_CASE("prediction: the trace scaled, the scheduler's model, the slowdown - the old model drops the new terms") {
   fp::CostTrace t;
   t.scene = "hand-made";
   for (int i = 0; i < 4; ++i) {
