@@ -162,24 +162,26 @@ void FrameRunner::record_steal(Clock::duration d) {
 // interval is that of the subsample's median (with ~10^6 samples it would be far narrower still).
 constexpr std::size_t kBootstrapSampleCap = 500;
 
+template <class Sample>
+stats::Interval strided_median_ci(const std::vector<Sample>& samples) {
+  const std::size_t stride = samples.size() / kBootstrapSampleCap + 1;
+  std::vector<double> sub;
+  for (std::size_t i = 0; i < samples.size(); i += stride) sub.push_back(samples[i]);
+  return stats::bootstrap_median_ci(sub);
+}
+
 RankStats& FrameRunner::finish_stats() {
   if (!owner_samples_.empty()) {
     std::vector<float> sorted = owner_samples_;
     auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
     std::nth_element(sorted.begin(), mid, sorted.end());
     stats_.owner_overhead_median_ns = *mid;
-    const std::size_t stride = owner_samples_.size() / kBootstrapSampleCap + 1;
-    std::vector<double> sub;
-    for (std::size_t i = 0; i < owner_samples_.size(); i += stride) sub.push_back(owner_samples_[i]);
-    const stats::Interval ci = stats::bootstrap_median_ci(sub);
+    const stats::Interval ci = strided_median_ci(owner_samples_);
     stats_.owner_overhead_ci_low_ns = ci.low;
     stats_.owner_overhead_ci_high_ns = ci.high;
   }
   if (!steal_latencies_us_.empty()) {
-    const std::size_t stride = steal_latencies_us_.size() / kBootstrapSampleCap + 1;
-    std::vector<double> sub;
-    for (std::size_t i = 0; i < steal_latencies_us_.size(); i += stride) sub.push_back(steal_latencies_us_[i]);
-    const stats::Interval ci = stats::bootstrap_median_ci(sub);
+    const stats::Interval ci = strided_median_ci(steal_latencies_us_);
     stats_.steal_latency_median_us = ci.median;
     stats_.steal_latency_ci_low_us = ci.low;
     stats_.steal_latency_ci_high_us = ci.high;
