@@ -8,11 +8,8 @@
 #include "core/paired_comparison.hpp"
 #include "distributed/rank_watchdog.hpp"
 #include "distributed/rma_stealing.hpp"
+#include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 namespace frontsteal::mpi {
 namespace {

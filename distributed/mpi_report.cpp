@@ -6,11 +6,8 @@
 #include <numeric>
 
 #include "core/paired_comparison.hpp"
+#include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 namespace frontsteal::mpi {
 namespace {

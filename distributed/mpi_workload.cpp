@@ -1,7 +1,6 @@
 // mpi_workload.cpp — the workload of frontsteal-mpi (mpi_workload.hpp).
 #include "distributed/mpi_workload.hpp"
 
-#include <stdexcept>
 
 #include "core/synthetic_work.hpp"
 
@@ -40,21 +39,11 @@ void build_workload(const Options& o, int rank, Workload& wl) {
     return;
   }
   wl.kind = "tessellation";
-  wl.model = tess::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
-  wl.n = static_cast<ItemId>(wl.model.surfaces.size());
-  if (wl.n == 0) throw std::runtime_error("scene '" + o.scene + "' has no surfaces");
-  for (const tess::Surface& s : wl.model.surfaces) wl.prepared.push_back(tess::prepare_surface(s));
-  wl.buffers.resize(wl.n);
-  wl.settings.pixel_tolerance = o.tolerance;
-  const tess::Box box = tess::model_box(wl.model);
-  for (int f = 0; f < o.frames; ++f) {
-    wl.cameras.push_back(tess::camera_on_path(box, f, o.frames));
-    wl.frusta.push_back(tess::Frustum::of(wl.cameras.back()));
-  }
-  wl.run = [&wl](int f, ItemId id) {
-    return tess::tessellate_surface(wl.prepared[id], wl.cameras[f], wl.frusta[f], wl.settings, wl.scratch,
-                                    wl.buffers[id]).triangles;
-  };
+  tess::PathSceneOptions so{.scene = o.scene, .data_dir = FRONTSTEAL_DATA_DIR, .frames = o.frames, .settings = {}};
+  so.settings.pixel_tolerance = o.tolerance;
+  wl.scene = tess::make_path_scene(so);  // throws on a bad or empty scene
+  wl.n = wl.scene.surfaces();
+  wl.run = [&wl](int f, ItemId id) { return wl.scene.tessellate(f, id, wl.scratch).triangles; };
   if (rank == 0) {  // the serial reference: a plain loop, once, before any scheduler runs
     for (int f = 0; f < o.frames; ++f) {
       std::uint64_t t = 0;

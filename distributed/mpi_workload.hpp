@@ -10,9 +10,7 @@
 #include "core/id_range.hpp"
 #include "distributed/mpi_options.hpp"
 #include "distributed/synthetic_cost.hpp"
-#include "tessellate/camera_path.hpp"
-#include "tessellate/scene_generator.hpp"
-#include "tessellate/surface_tessellator.hpp"
+#include "tessellate/path_scene.hpp"
 
 namespace frontsteal::mpi {
 
@@ -21,15 +19,11 @@ struct Workload {
   std::string kind;                                             // "synthetic" or "tessellation"
   std::function<std::uint32_t(int frame, ItemId id)> run;       // executes item id of frame f; its triangles
   std::function<std::uint64_t(int frame)> serial_triangles;     // the serial loop's count for frame f (rank 0)
-  // Tessellation state (empty for synthetic).
-  tess::Model model;
-  std::vector<tess::PreparedSurface> prepared;
-  std::vector<tess::TriangleBuffers> buffers;
-  std::vector<tess::Camera> cameras;
-  std::vector<tess::Frustum> frusta;
-  tess::TessellationSettings settings;
+  // Tessellation (empty for synthetic): the scene along frontsteal's default path (tessellate/path_scene.hpp);
+  // a rank runs one item at a time, so one scratch serves it.
+  tess::PathScene scene;
   tess::TessellationScratch scratch;
-  std::vector<std::uint64_t> serial;
+  std::vector<std::uint64_t> serial;  // per frame, the serial loop's triangles (rank 0)
 };
 
 // Fills wl (in place: its closures point into it). Rank 0 also runs the serial reference loop.

@@ -232,7 +232,9 @@ class Model {
           k.step = Step::kTryVictim;
           return at_time(c, r);
         }
-        k.mid = k.front_read + static_cast<std::uint32_t>(items_left_to_victim(end - k.front_read));
+        k.mid = defect_ == Defect::kEmptyShare
+                    ? end
+                    : k.front_read + static_cast<std::uint32_t>(items_left_to_victim(end - k.front_read));
         k.old_end = end;
         double c = op(t, current(k), lat_.get, false);  // the entry count
         c = op(c, current(k), lat_.get, false);          // the entries

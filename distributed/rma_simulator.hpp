@@ -28,7 +28,8 @@
 // rank per core), cache effects of stolen items, a rank's own contention between its thief and owner roles.
 //
 // AUDIT. Every simulated frame checks that each item ran exactly once; Defect::kSkipReread (the thief keeps
-// [mid, end) without the T5 re-read) must be caught — the model's negative control.
+// [mid, end) without the T5 re-read) must be caught — the model's negative control. Defect::kEmptyShare (a
+// thief plans to take nothing: mid = end) is the control of the tests that say stealing happens and pays.
 #pragma once
 
 #include <cstdint>
@@ -59,7 +60,7 @@ Latencies latencies_from_calibration(const std::string& path);
 enum class Scheduler : std::uint8_t { kRma, kRequest, kCentral, kStatic };
 const char* to_string(Scheduler s) noexcept;
 
-enum class Defect : std::uint8_t { kNone, kSkipReread };
+enum class Defect : std::uint8_t { kNone, kSkipReread, kEmptyShare };
 
 struct Workload {
   std::uint32_t items = 200000;

@@ -8,13 +8,10 @@
 #include <vector>
 
 #include "distributed/rma_simulator.hpp"
+#include "reporting/build_stamp.hpp"
 #include "reporting/command_line.hpp"
 #include "reporting/results_dir.hpp"
 #include "reporting/table.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 namespace sim = frontsteal::mpi::sim;
 namespace report = frontsteal::report;

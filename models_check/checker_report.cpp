@@ -1,12 +1,9 @@
 // checker_report.cpp — CheckerReport: the opening and closing every Relacy checker's report shares.
 #include "models_check/checker_report.hpp"
+#include "reporting/build_stamp.hpp"
 
 #include <filesystem>
 #include <utility>
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 namespace frontsteal::model {
 

@@ -23,14 +23,8 @@
 #include "papers/table2_report.hpp"
 #include "papers/validate_command.hpp"
 #include "render/headless_gl.hpp"
+#include "reporting/build_stamp.hpp"
 #include "tessellate/model_format.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
-#ifndef FRONTSTEAL_DATA_DIR
-#define FRONTSTEAL_DATA_DIR "data"
-#endif
 
 namespace fp = frontsteal::papers;
 
@@ -38,8 +32,9 @@ namespace {
 
 struct Subcommand {
   const char* name;
-  const char* summary;  // its paragraph in --help
-  int (*run)(fp::PaperRun&);
+  const char* summary;                  // its paragraph in --help
+  int (*run)(fp::PaperRun&);            // runs with the shared options, or
+  int (*run_own)(int argc, char** argv) = nullptr;  // parses its own (must come first: `frontsteal-paper NAME ...`)
 };
 
 int run_all(fp::PaperRun& run);
@@ -59,6 +54,8 @@ constexpr Subcommand kSubcommands[] = {
     {"trace", "record a cost trace of --scene into --trace FILE", fp::run_trace},
     {"simulate", "replay --trace FILE through every model for P = 1 ... --max-p", fp::run_simulate},
     {"all", "calibrate, table1, fig8, table2", run_all},
+    {"validate", "the simulator's held-out validation against main-job runs (--study DIR); takes its own options, "
+                 "see `frontsteal-paper validate --help`", nullptr, fp::run_validate_command},
 };
 
 int run_all(fp::PaperRun& run) {
@@ -71,13 +68,19 @@ int run_all(fp::PaperRun& run) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // `validate` parses its own options (papers/validate_command.hpp).
-  if (argc > 1 && std::string_view(argv[1]) == "validate") return fp::run_validate_command(argc - 1, argv + 1);
+  for (const Subcommand& s : kSubcommands) {
+    if (s.run_own && argc > 1 && std::string_view(argv[1]) == s.name) return s.run_own(argc - 1, argv + 1);
+  }
   std::vector<fp::SubcommandSummary> summaries;
   for (const Subcommand& s : kSubcommands) summaries.push_back({s.name, s.summary});
   fp::PaperRun run(fp::parse_options(argc, argv, summaries), FRONTSTEAL_GIT_COMMIT, FRONTSTEAL_DATA_DIR);
   const auto* chosen = std::find_if(std::begin(kSubcommands), std::end(kSubcommands),
                                     [&](const Subcommand& s) { return run.options().command == s.name; });
+  if (!chosen->run) {
+    std::cerr << fp::kPaperProgram << ": " << chosen->name << " takes its own options; put it first: "
+              << fp::kPaperProgram << ' ' << chosen->name << " --help\n";
+    return 2;
+  }
   try {
     return chosen->run(run);
   } catch (const frontsteal::render::GraphicsError& e) {

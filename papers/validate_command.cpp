@@ -14,16 +14,10 @@
 
 #include "papers/validation.hpp"
 #include "papers/workload.hpp"
+#include "reporting/build_stamp.hpp"
 #include "reporting/command_line.hpp"
 #include "reporting/results_dir.hpp"
 #include "reporting/table.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
-#ifndef FRONTSTEAL_DATA_DIR
-#define FRONTSTEAL_DATA_DIR "data"
-#endif
 
 namespace frontsteal::papers {
 namespace {

@@ -11,37 +11,29 @@
 
 #include "core/execution_counter.hpp"
 #include "schedulers/registry.hpp"
-#include "tessellate/scene_generator.hpp"
 
 namespace frontsteal::papers {
 
 using Clock = std::chrono::steady_clock;
 
+namespace {
 
+tess::PathSceneOptions scene_options(const WorkloadOptions& o) {
+  const auto kind = tess::camera_path_named(o.path);
+  if (!kind) throw std::invalid_argument("unknown camera path '" + o.path + "'");
+  tess::PathSceneOptions so{.scene = o.scene, .data_dir = o.data_dir, .path = *kind, .frames = o.frames,
+                            .width = o.width, .height = o.height, .settings = {}};
+  so.settings.pixel_tolerance = o.tolerance_px;
+  return so;
+}
 
-PathWorkload::PathWorkload(const WorkloadOptions& options) : options_(options) {
-  model_ = tess::load_scene(options.scene, options.data_dir);
-  if (model_.surfaces.empty()) throw std::invalid_argument("scene '" + options.scene + "' has no surfaces");
-  for (const tess::Surface& s : model_.surfaces) prepared_.push_back(tess::prepare_surface(s));
-  buffers_.resize(prepared_.size());
-  triangles_.assign(prepared_.size(), 0);
-  settings_.pixel_tolerance = options.tolerance_px;
-  const tess::Box box = tess::model_box(model_);
-  const auto kind = tess::camera_path_named(options.path);
-  if (!kind) throw std::invalid_argument("unknown camera path '" + options.path + "'");
-  const tess::DenseRegion dense = tess::densest_region(model_);
-  for (int f = 0; f < options.frames; ++f) {
-    // orbit-then-zoom is camera_on_path itself, as in the main job
-    cameras_.push_back(tess::camera_on(*kind, box, f, options.frames, options.width, options.height, &dense));
-    frusta_.push_back(tess::Frustum::of(cameras_.back()));
-  }
+}  // namespace
+
+PathWorkload::PathWorkload(const WorkloadOptions& options)
+    : options_(options), scene_(tess::make_path_scene(scene_options(options))), triangles_(scene_.surfaces(), 0) {
   // The hints of the main job: patch centres, and the cost estimate of the path's first (overview) view.
-  for (const tess::PreparedSurface& p : prepared_) {
-    const glm::dvec3 c = p.box.centre();
-    hints_.centres.push_back({c.x, c.y, c.z});
-    const tess::SurfacePlan plan = tess::plan_surface(p, cameras_[0], frusta_[0], settings_);
-    hints_.costs.push_back(std::max(1.0, tess::estimate_cost(p, plan, settings_)));
-  }
+  hints_.centres = scene_.centres();
+  hints_.costs = scene_.estimated_costs(0);
   prepare_workers(1);
 }
 
@@ -50,9 +42,7 @@ void PathWorkload::prepare_workers(WorkerId workers) {
 }
 
 void PathWorkload::tessellate(int f, ItemId id, WorkerId w) {
-  const tess::SurfaceResult r =
-      tess::tessellate_surface(prepared_[id], cameras_[f], frusta_[f], settings_, scratch_[w], buffers_[id]);
-  triangles_[id] = static_cast<std::uint32_t>(r.triangles);
+  triangles_[id] = static_cast<std::uint32_t>(scene_.tessellate(f, id, scratch_[w]).triangles);
 }
 
 std::uint64_t PathWorkload::frame_triangles() const {

@@ -17,9 +17,7 @@
 #include "schedulers/noise_monitor.hpp"
 #include "schedulers/scheduler.hpp"
 #include "schedulers/static_scheduler.hpp"
-#include "tessellate/camera_path.hpp"
-#include "tessellate/model.hpp"
-#include "tessellate/surface_tessellator.hpp"
+#include "tessellate/path_scene.hpp"
 
 namespace frontsteal::papers {
 
@@ -36,8 +34,8 @@ class PathWorkload {
  public:
   explicit PathWorkload(const WorkloadOptions& options);  // throws what load_scene throws
 
-  ItemId surfaces() const noexcept { return static_cast<ItemId>(prepared_.size()); }
-  int frames() const noexcept { return static_cast<int>(cameras_.size()); }
+  ItemId surfaces() const noexcept { return scene_.surfaces(); }
+  int frames() const noexcept { return scene_.frames(); }
   const WorkloadOptions& options() const noexcept { return options_; }
   const sched::WorkloadHints& hints() const noexcept { return hints_; }
 
@@ -48,14 +46,9 @@ class PathWorkload {
 
  private:
   WorkloadOptions options_;
-  tess::Model model_;
-  std::vector<tess::PreparedSurface> prepared_;
-  std::vector<tess::TriangleBuffers> buffers_;
-  std::vector<tess::Camera> cameras_;
-  std::vector<tess::Frustum> frusta_;
-  tess::TessellationSettings settings_;
+  tess::PathScene scene_;
   std::vector<tess::TessellationScratch> scratch_;
-  std::vector<std::uint32_t> triangles_;
+  std::vector<std::uint32_t> triangles_;  // per surface, of its last tessellation
   sched::WorkloadHints hints_;
 };
 

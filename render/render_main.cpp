@@ -14,6 +14,7 @@
 #include <tuple>
 #include <cmath>
 
+#include "reporting/build_stamp.hpp"
 #include "reporting/command_line.hpp"
 #include "reporting/results_dir.hpp"
 #include "reporting/table.hpp"

@@ -15,6 +15,7 @@
 #include <thread>
 #include <tuple>
 
+#include "reporting/build_stamp.hpp"
 #include "reporting/command_line.hpp"
 #include "render/live_greedy.hpp"
 #include "render/render_scene.hpp"

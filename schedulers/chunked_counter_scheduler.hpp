@@ -17,12 +17,9 @@ namespace frontsteal::sched {
 class ChunkedCounterScheduler final : public TeamScheduler<ChunkedCounterScheduler> {
  public:
   explicit ChunkedCounterScheduler(const SchedulerConfig& config)
-      : TeamScheduler(config.workers),
-        items_(config.items),
-        grain_(config.grain ? config.grain : default_grain(config.items, config.workers)),
-        timed_(config.time_claims) {}
+      : TeamScheduler(config.workers), claims_(config) {}
 
-  ItemId grain() const noexcept { return grain_; }
+  ItemId grain() const noexcept { return claims_.grain; }
 
  private:
   friend class TeamScheduler<ChunkedCounterScheduler>;
@@ -30,16 +27,13 @@ class ChunkedCounterScheduler final : public TeamScheduler<ChunkedCounterSchedul
   void work(WorkerId w) {
     WorkerSlot& me = slot(w);
     for (;;) {
-      const std::uint64_t first = next_.fetch_add(grain_, std::memory_order::relaxed);
-      if (first >= items_) return;
-      const ItemId last = static_cast<ItemId>(std::min<std::uint64_t>(first + grain_, items_));
-      me.run_range(process(), static_cast<ItemId>(first), last, w, timed_);
+      const std::uint64_t first = next_.fetch_add(claims_.grain, std::memory_order::relaxed);
+      if (first >= claims_.items) return;
+      me.run_range(process(), static_cast<ItemId>(first), claims_.chunk_end(first), w, claims_.timed);
     }
   }
 
-  ItemId items_;
-  ItemId grain_;
-  bool timed_;
+  ChunkClaims claims_;
   alignas(64) std::atomic<std::uint64_t> next_{0};  // 64-bit: P × grain past N cannot wrap
 };
 

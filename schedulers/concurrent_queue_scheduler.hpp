@@ -45,15 +45,12 @@ namespace frontsteal::sched {
 class ConcurrentQueueScheduler final : public Scheduler {
  public:
   explicit ConcurrentQueueScheduler(const SchedulerConfig& config)
-      : items_(config.items),
-        grain_(config.grain ? config.grain : default_grain(config.items, config.workers)),
-        timed_(config.time_claims),
+      : claims_(config),
         queue_(chunk_count()),
         producer_(queue_),
         slots_(config.workers) {
     chunks_.reserve(chunk_count());
-    for (ItemId first = 0; first < items_; first = static_cast<ItemId>(std::min<std::uint64_t>(
-                                                      std::uint64_t{first} + grain_, items_))) {
+    for (ItemId first = 0; first < claims_.items; first = claims_.chunk_end(first)) {
       chunks_.push_back(first);
     }
     consumers_.reserve(config.workers);
@@ -73,24 +70,21 @@ class ConcurrentQueueScheduler final : public Scheduler {
     return collect(stats_, slots_, wall_ns, &team_->spans());
   }
   WorkerId worker_count() const noexcept override { return team_->size(); }
-  ItemId grain() const noexcept { return grain_; }
+  ItemId grain() const noexcept { return claims_.grain; }
 
  private:
-  std::size_t chunk_count() const { return grain_ ? (std::size_t{items_} + grain_ - 1) / grain_ : 0; }
+  std::size_t chunk_count() const { return claims_.grain ? (std::size_t{claims_.items} + claims_.grain - 1) / claims_.grain : 0; }
 
   void work(WorkerId w) {
     WorkerSlot& me = slots_[w];
     moodycamel::ConsumerToken& token = *consumers_[w];
     ItemId first = 0;
     while (queue_.try_dequeue(token, first)) {
-      const ItemId last = static_cast<ItemId>(std::min<std::uint64_t>(std::uint64_t{first} + grain_, items_));
-      me.run_range(*process_, first, last, w, timed_);
+      me.run_range(*process_, first, claims_.chunk_end(first), w, claims_.timed);
     }
   }
 
-  ItemId items_;
-  ItemId grain_;
-  bool timed_;
+  ChunkClaims claims_;
   std::vector<ItemId> chunks_;  // the first item of every chunk, in order: the refill of every frame
   moodycamel::ConcurrentQueue<ItemId> queue_;
   moodycamel::ProducerToken producer_;  // used by the caller only, between frames

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   if (!run.run_rounds(progress, auto_repeats, repeats_note)) return 1;
   run.finish();
 
-  const mj::Measured measured{o, cores, scene.wl, scene.dense, warm.item_ns, warm.item_estimate,
+  const mj::Measured measured{o, cores, scene.wl, scene.wl.dense, warm.item_ns, warm.item_estimate,
                               run.serial_path_ms(), run.serial_frame_ms(), run.serial_usage(), run.cells(),
                               run.not_available(), at_start, run.measure_start(), run.measure_end(), run.at_end(),
                               repeats_note, run.co_runner_cpu()};

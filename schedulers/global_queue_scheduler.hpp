@@ -15,12 +15,9 @@ namespace frontsteal::sched {
 class GlobalQueueScheduler final : public TeamScheduler<GlobalQueueScheduler> {
  public:
   explicit GlobalQueueScheduler(const SchedulerConfig& config)
-      : TeamScheduler(config.workers),
-        items_(config.items),
-        grain_(config.grain ? config.grain : default_grain(config.items, config.workers)),
-        timed_(config.time_claims) {}
+      : TeamScheduler(config.workers), claims_(config) {}
 
-  ItemId grain() const noexcept { return grain_; }
+  ItemId grain() const noexcept { return claims_.grain; }
 
  private:
   friend class TeamScheduler<GlobalQueueScheduler>;
@@ -35,17 +32,15 @@ class GlobalQueueScheduler final : public TeamScheduler<GlobalQueueScheduler> {
         me.stats.lock_wait_ns += nanoseconds_since(start);
       }
       const ItemId first = next_;
-      const ItemId last = static_cast<ItemId>(std::min<std::uint64_t>(std::uint64_t{first} + grain_, items_));
+      const ItemId last = claims_.chunk_end(first);
       next_ = last;
       mutex_.unlock();
       if (first >= last) return;
-      me.run_range(process(), first, last, w, timed_);
+      me.run_range(process(), first, last, w, claims_.timed);
     }
   }
 
-  ItemId items_;
-  ItemId grain_;
-  bool timed_;
+  ChunkClaims claims_;
   std::mutex mutex_;
   ItemId next_ = 0;  // guarded by mutex_
 };

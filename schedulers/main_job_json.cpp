@@ -3,11 +3,8 @@
 
 #include <cmath>
 
+#include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 namespace frontsteal::main_job {
 

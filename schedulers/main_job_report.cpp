@@ -6,16 +6,13 @@
 #include <iostream>
 #include <sstream>
 
+#include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
 #include "reporting/table.hpp"
 #include "schedulers/main_job_analysis.hpp"
 #include "schedulers/main_job_json.hpp"
 #include "schedulers/main_job_plots.hpp"
 #include "schedulers/main_job_tables.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 namespace frontsteal::main_job {
 
@@ -103,6 +100,5 @@ int write_results(const Measured& m, double elapsed_s) {
   }
   return report_problems(m, a) ? 1 : 0;
 }
-
 
 }  // namespace frontsteal::main_job

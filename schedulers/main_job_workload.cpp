@@ -10,11 +10,8 @@
 #include <iostream>
 
 #include "core/machine_info.hpp"
+#include "reporting/build_stamp.hpp"
 #include "reporting/table.hpp"
-
-#ifndef FRONTSTEAL_DATA_DIR
-#define FRONTSTEAL_DATA_DIR "data"
-#endif
 
 namespace frontsteal::main_job {
 
@@ -25,34 +22,20 @@ PreparedScene prepare_scene(const Options& o, unsigned cores) {
   PreparedScene scene;
   Workload& wl = scene.wl;
   const auto load_start = std::chrono::steady_clock::now();
+  ts::PathSceneOptions po{.scene = o.scene, .data_dir = FRONTSTEAL_DATA_DIR, .path = o.path, .frames = o.frames,
+                          .width = o.width, .height = o.height, .settings = {}};
+  po.settings.pixel_tolerance = o.tolerance;
+  po.settings.planted_defect = o.planted_defect;
   try {
-    wl.model = ts::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
+    static_cast<ts::PathScene&>(wl) = ts::make_path_scene(po);
   } catch (const std::exception& e) {
     std::cerr << kProgram << ": cannot load scene '" << o.scene << "': " << e.what() << '\n';
     std::exit(2);
   }
-  const auto n = static_cast<fs::ItemId>(wl.model.surfaces.size());
-  if (n == 0) {
-    std::cerr << kProgram << ": scene '" << o.scene << "' has no surfaces\n";
-    std::exit(2);
-  }
-  for (const ts::Surface& s : wl.model.surfaces) wl.prepared.push_back(ts::prepare_surface(s));
-  wl.buffers.resize(n);
-  wl.settings.pixel_tolerance = o.tolerance;
-  wl.settings.planted_defect = o.planted_defect;
-  const ts::Box box = ts::model_box(wl.model);
-  scene.dense = ts::densest_region(wl.model);
-  for (int f = 0; f < o.frames; ++f) {
-    // orbit-then-zoom is camera_on_path itself: the same views as before --path existed.
-    wl.cameras.push_back(ts::camera_on(o.path, box, f, o.frames, o.width, o.height, &scene.dense));
-    wl.frusta.push_back(ts::Frustum::of(wl.cameras.back()));
-  }
-  for (const ts::PreparedSurface& p : wl.prepared) {
-    const glm::dvec3 c = p.box.centre();
-    scene.hints.centres.push_back({c.x, c.y, c.z});
-    const ts::SurfacePlan plan = ts::plan_surface(p, wl.cameras[0], wl.frusta[0], wl.settings);
-    scene.hints.costs.push_back(std::max(1.0, ts::estimate_cost(p, plan, wl.settings)));
-  }
+  const fs::ItemId n = wl.surfaces();
+  // The hints of the cost- and locality-aware schedulers: patch centres, and the path's first (overview) view.
+  scene.hints.centres = wl.centres();
+  scene.hints.costs = wl.estimated_costs(0);
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   if (!o.quiet) {
     std::fprintf(stderr, "frontsteal: scene %s: %u surfaces, %d frames (path %s), %s, %u hardware threads; "
@@ -67,8 +50,7 @@ FrameTessellator::FrameTessellator(Workload& wl, WorkerId max_workers)
       inconsistent_(wl.model.surfaces.size(), 0), capped_(wl.model.surfaces.size(), 0) {}
 
 void FrameTessellator::run(int f, ItemId id, WorkerId w) {
-  const ts::SurfaceResult r = ts::tessellate_surface(wl_.prepared[id], wl_.cameras[f], wl_.frusta[f], wl_.settings,
-                                                     scratch_[w], wl_.buffers[id]);
+  const ts::SurfaceResult r = wl_.tessellate(f, id, scratch_[w]);
   triangles_[id] = static_cast<std::uint32_t>(r.triangles);
   inconsistent_[id] = r.inconsistencies() > 0;
   capped_[id] = r.capped;

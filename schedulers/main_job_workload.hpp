@@ -13,36 +13,26 @@
 #include "core/id_range.hpp"
 #include "schedulers/main_job_options.hpp"
 #include "schedulers/registry.hpp"
-#include "tessellate/camera_path.hpp"
-#include "tessellate/scene_generator.hpp"
-#include "tessellate/surface_tessellator.hpp"
+#include "tessellate/path_scene.hpp"
 
 namespace frontsteal::main_job {
 
 namespace sc = frontsteal::sched;
 
 // The workload: the scene prepared once, its per-frame views, and one output buffer per surface.
-struct Workload {
-  ts::Model model;
-  std::vector<ts::PreparedSurface> prepared;
-  std::vector<ts::TriangleBuffers> buffers;  // per surface: every scheduler writes the same buffers
-  std::vector<ts::Camera> cameras;
-  std::vector<ts::Frustum> frusta;
-  ts::TessellationSettings settings;
-  std::vector<std::uint64_t> serial_triangles;  // per frame, from the serial loop: the reference
+// The scene along --path (tessellate/path_scene.hpp; every scheduler writes the same per-surface buffers),
+// and what the serial loop found in it: the reference every scheduler's frames are audited against.
+struct Workload : ts::PathScene {
+  std::vector<std::uint64_t> serial_triangles;        // per frame, from the serial loop: the reference
   std::vector<std::uint64_t> serial_inconsistencies;  // per frame: surfaces whose tessellation audit failed
   std::vector<std::uint64_t> serial_capped;           // per frame: surfaces held at the step cap
 };
 
-// The scene loaded and prepared, its camera path, and the hints for the spatial partitions (patch centres,
-// and the cost estimate of the path's first, overview, view).
 struct PreparedScene {
   Workload wl;
-  ts::DenseRegion dense;
   sc::WorkloadHints hints;
 };
 
-// Exits 2 when the scene cannot be loaded or is empty (before any measurement: nothing to clean up).
 PreparedScene prepare_scene(const Options& o, unsigned cores);
 
 // Tessellates surface `id` for frame `f` with worker w's scratch into the surface's own buffer, and keeps per

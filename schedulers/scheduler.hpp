@@ -10,6 +10,7 @@
 // What each scheduler is, and which fields of WorkerFrameStats it fills, is documented in registry.hpp.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -63,5 +64,20 @@ inline ItemId default_grain(ItemId items, WorkerId workers) {
   const ItemId g = items / (100 * std::max<WorkerId>(workers, 1));
   return g == 0 ? 1 : g;
 }
+
+// What the chunk-claiming peers (queue-mutex, chunked counter, moodycamel queue) share: [0, items) is handed
+// out `grain` items per claim (default_grain unless the config sets one), and whether each claim's busy time
+// is clocked.
+struct ChunkClaims {
+  explicit ChunkClaims(const SchedulerConfig& c)
+      : items(c.items), grain(c.grain ? c.grain : default_grain(c.items, c.workers)), timed(c.time_claims) {}
+  // The end of the chunk that starts at `first` (64-bit: a cursor P x grain past N cannot wrap).
+  ItemId chunk_end(std::uint64_t first) const noexcept {
+    return static_cast<ItemId>(std::min<std::uint64_t>(first + grain, items));
+  }
+  ItemId items;
+  ItemId grain;
+  bool timed;
+};
 
 }  // namespace frontsteal::sched

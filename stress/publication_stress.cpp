@@ -12,14 +12,11 @@
 #include <vector>
 
 #include "core/publication_policies.hpp"
+#include "reporting/build_stamp.hpp"
 #include "reporting/command_line.hpp"
 #include "reporting/results_dir.hpp"
 #include "reporting/table.hpp"
 #include "stress/publication_case.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 using namespace frontsteal;
 using namespace frontsteal::stress;

@@ -4,12 +4,9 @@
 #include <sstream>
 #include <thread>
 
+#include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
 #include "reporting/table.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 namespace frontsteal::stress {
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/machine_info.hpp"
+#include "reporting/build_stamp.hpp"
 #include "reporting/command_line.hpp"
 #include "reporting/results_dir.hpp"
 #include "reporting/table.hpp"
@@ -26,13 +27,6 @@
 #include "tessellate/scene_generator.hpp"
 #include "tessellate/surface_tessellator.hpp"
 #include "tessellate/triangle_budget.hpp"
-
-#ifndef FRONTSTEAL_DATA_DIR
-#define FRONTSTEAL_DATA_DIR "data"
-#endif
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 namespace {
 

@@ -8,11 +8,8 @@
 #include <stdexcept>
 
 #include "core/thread_cpu_time.hpp"
+#include "reporting/build_stamp.hpp"
 #include "schedulers/llvm_openmp/static_steal_probe.hpp"
-
-#ifndef FRONTSTEAL_DATA_DIR
-#define FRONTSTEAL_DATA_DIR "data"
-#endif
 
 namespace frontsteal::llvm_openmp {
 
@@ -26,24 +23,18 @@ std::int64_t ns_since(Clock::time_point t) {
 }  // namespace
 
 StaticStealFrames::StaticStealFrames(const Options& o) : o_(o) {
+  ts::PathSceneOptions so{.scene = o.scene, .data_dir = FRONTSTEAL_DATA_DIR, .path = o.path, .frames = o.frames,
+                          .width = o.width, .height = o.height, .settings = {}};
+  so.settings.pixel_tolerance = o.tolerance;
+  so.settings.planted_defect = o.defect;
   try {
-    model_ = ts::load_scene(o.scene, FRONTSTEAL_DATA_DIR);
+    scene_ = ts::make_path_scene(so);
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot load scene '" + o.scene + "': " + e.what());
   }
-  n_ = static_cast<long long>(model_.surfaces.size());
+  n_ = static_cast<long long>(scene_.surfaces());
   grain_ = o.grain;
   chunks_ = (n_ + grain_ - 1) / grain_;
-  for (const ts::Surface& s : model_.surfaces) prepared_.push_back(ts::prepare_surface(s));
-  buffers_.resize(static_cast<std::size_t>(n_));
-  settings_.pixel_tolerance = o.tolerance;
-  settings_.planted_defect = o.defect;
-  const ts::Box box = ts::model_box(model_);
-  const ts::DenseRegion dense = ts::densest_region(model_);  // dense-zoom's target, as the parent computes it
-  for (int f = 0; f < o.frames; ++f) {
-    cameras_.push_back(ts::camera_on(o.path, box, f, o.frames, o.width, o.height, &dense));
-    frusta_.push_back(ts::Frustum::of(cameras_.back()));
-  }
   scratch_.resize(static_cast<std::size_t>(o.workers));
   triangles_.assign(static_cast<std::size_t>(n_), 0);
   inconsistent_.assign(static_cast<std::size_t>(n_), 0);
@@ -53,8 +44,7 @@ StaticStealFrames::StaticStealFrames(const Options& o) : o_(o) {
 }
 
 void StaticStealFrames::run_item(int f, long long id, int t) {
-  const ts::SurfaceResult r = ts::tessellate_surface(prepared_[id], cameras_[f], frusta_[f], settings_, scratch_[t],
-                                                     buffers_[id]);
+  const ts::SurfaceResult r = scene_.tessellate(f, static_cast<frontsteal::ItemId>(id), scratch_[t]);
   triangles_[id] = static_cast<std::uint32_t>(r.triangles);
   inconsistent_[id] = r.inconsistencies() > 0;
   runs_[id].fetch_add(1, std::memory_order_relaxed);  // read after the region's end (its barrier orders it)

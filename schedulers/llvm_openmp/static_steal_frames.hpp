@@ -15,9 +15,7 @@
 
 #include "core/thread_pinning.hpp"
 #include "schedulers/llvm_openmp/child_options.hpp"
-#include "tessellate/camera_path.hpp"
-#include "tessellate/scene_generator.hpp"
-#include "tessellate/surface_tessellator.hpp"
+#include "tessellate/path_scene.hpp"
 
 namespace frontsteal::llvm_openmp {
 
@@ -46,13 +44,8 @@ class StaticStealFrames {
   std::string encoded_runs();     // <runs>, and the counts reset for the next frame
 
   Options o_;
-  ts::Model model_;
+  ts::PathScene scene_;  // the parent's views: the same tessellate/path_scene.cpp, from the same options
   long long n_ = 0, grain_ = 1, chunks_ = 0;
-  std::vector<ts::PreparedSurface> prepared_;
-  std::vector<ts::TriangleBuffers> buffers_;
-  ts::TessellationSettings settings_;
-  std::vector<ts::Camera> cameras_;
-  std::vector<ts::Frustum> frusta_;
   std::vector<ts::TessellationScratch> scratch_;
   std::vector<std::uint32_t> triangles_;
   std::vector<std::uint8_t> inconsistent_;

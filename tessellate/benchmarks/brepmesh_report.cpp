@@ -11,12 +11,9 @@
 #include <thread>
 
 #include "core/machine_info.hpp"
+#include "reporting/build_stamp.hpp"
 #include "reporting/json.hpp"
 #include "reporting/results_dir.hpp"
-
-#ifndef FRONTSTEAL_GIT_COMMIT
-#define FRONTSTEAL_GIT_COMMIT "unknown"
-#endif
 
 namespace frontsteal::brepmesh {
 
@@ -31,7 +28,6 @@ std::string fmt(double x, int digits = 3) {
 }
 
 std::string timing(const Timing& t) { return fmt(t.median) + " [" + fmt(t.min) + ", " + fmt(t.max) + "]"; }
-
 
 }  // namespace
 

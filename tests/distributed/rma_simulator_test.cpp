@@ -1,7 +1,8 @@
 // rma_simulator_test.cpp — the distributed simulator's own audit (rma_simulator.hpp): every scheduler runs
 // each item exactly once per frame, with and without the transport's target-progress delay, and the planted
 // skip-reread defect is caught (deterministic: a fixed seed and a configuration where victims run many
-// items between a thief's T1 and T3).
+// items between a thief's T1 and T3); stealing happens and pays under skew (control: thieves that plan an
+// empty share).
 #include <catch2/catch.hpp>
 
 #include "distributed/rma_simulator.hpp"
@@ -51,10 +52,21 @@ TEST_CASE("every simulated scheduler runs each item exactly once per frame", "[r
   }
 }
 
-TEST_CASE("simulated stealing steals under skew and beats static round robin's worst case", "[rma_simulator]") {
+// The rma ranks start from contiguous lists, which the moving heavy fifth unbalances (without stealing about a
+// quarter efficient here); stealing must bring them to within 10 % of ideal. Static round robin is not the
+// bar: interleaving spreads a contiguous heavy fifth evenly (about 0.997 on this workload).
+TEST_CASE("simulated stealing steals under skew and balances what its contiguous lists do not", "[rma_simulator]") {
+  const auto passes = [](const sim::Result& r) { return r.steals > 0 && r.efficiency >= 0.9; };
   const sim::Result rma = sim::simulate(sim::Scheduler::kRma, 16, small(), shared_memory_like());
-  CHECK(rma.steals > 0);
+  INFO("rma: " << rma.steals << " steals, efficiency " << rma.efficiency);
   CHECK(rma.exactly_once);
+  CHECK(passes(rma));
+  // Negative control: thieves that plan an empty share (mid = end) steal nothing; the check must fail.
+  const sim::Result empty =
+      sim::simulate(sim::Scheduler::kRma, 16, small(), shared_memory_like(), 1, sim::Defect::kEmptyShare);
+  INFO("empty share: " << empty.steals << " steals, efficiency " << empty.efficiency);
+  CHECK(empty.exactly_once);
+  CHECK_FALSE(passes(empty));
 }
 
 TEST_CASE("negative control: a thief that skips the re-read (T5) is caught by the model's audit", "[rma_simulator]") {
