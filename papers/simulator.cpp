@@ -77,6 +77,7 @@ FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, S
   ItemId cursor = 0;
   double free_at = 0;
   WorkerId last_holder = p;  // none yet
+  std::vector<char> woken(p, 0);  // [w]: w slept on the lock since its last claim
   while (!events.empty()) {
     const Event e = events.top();
     events.pop();
@@ -84,13 +85,21 @@ FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, S
       out.last_finish_ns = std::max(out.last_finish_ns, e.at);
       continue;
     }
-    double granted = e.at;
-    double hold = o.lock_uncontended_ns + (last_holder != p && last_holder != e.worker ? o.line_transfer_ns : 0);
-    if (free_at > e.at) {  // held: the worker sleeps in the futex until the holder's unlock wakes it
-      granted = free_at + o.lock_wake_ns;
-      hold = o.lock_handoff_ns;
+    if (free_at > e.at) {
+      // Held: the worker sleeps in the futex; the holder's unlock (at free_at) wakes it, and it runs again
+      // lock_wake_ns later and asks again. The lock is not reserved for it meanwhile: glibc's mutex lets a
+      // running worker take it first (barging), so a slow wake-up delays the sleeper, not the queue.
       ++totals.lock_waits;
+      woken[e.worker] = 1;
+      events.push({free_at + o.lock_wake_ns, e.worker});
+      continue;
     }
+    const double granted = e.at;
+    const double hold = woken[e.worker]
+                            ? o.lock_handoff_ns
+                            : o.lock_uncontended_ns +
+                                  (last_holder != p && last_holder != e.worker ? o.line_transfer_ns : 0);
+    woken[e.worker] = 0;
     free_at = granted + hold;
     last_holder = e.worker;
     const ItemId first = cursor;

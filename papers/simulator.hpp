@@ -5,10 +5,11 @@
 // of the item costs each model charges what its scheduler does, in the calibrated costs of calibration.hpp:
 //
 //   static     (round robin, spatial partition) each worker runs its fixed list; per item `item_static`.
-//   queue      one lock over a cursor, grain N/(100P) (paper §4.1). A worker asks for the lock at time t and
-//              gets it at max(t, free_at); the hold is `lock_uncontended` (+ one line transfer when the last
-//              holder was another worker), or `lock_handoff` when it had to wait (the waiter sleeps in the
-//              futex and is woken); requests are served in time order. Per item `item_queue`.
+//   queue      one lock over a cursor, grain N/(100P) (paper §4.1). A worker that asks for a free lock gets
+//              it at once and holds it `lock_uncontended` (+ one line transfer when the last holder was another
+//              worker); one that finds it held sleeps, is woken by the release and asks again lock_wake_ns
+//              later, holding it `lock_handoff` when it gets it. Requests are served in time order. Per item
+//              `item_queue`.
 //   stealing   the core protocol (§4.2): lists carried from frame to frame (each worker's next list = the items
 //              it ran, in id order; the first frame: contiguous blocks). The owner claims an item at the
 //              instant it starts it (per item `item_stealing`). An idle worker visits victims in its own
@@ -25,7 +26,10 @@
 // Cache affinity: an item run by another worker than the one that ran it in the previous frame costs
 // (1 + affinity_penalty) × its traced cost (the first frame has no previous worker: no penalty). Interference:
 // worker w's item costs are multiplied by worker_slowdown[w] (a co-runner sharing its core).
-// A waiter on the queue's lock sleeps: it holds the lock lock_wake_ns after the holder let it go.
+// A waiter on the queue's lock sleeps: it asks again lock_wake_ns after the holder let it go, and a running
+// worker may take the lock before it (glibc's mutex barges; a model that reserved the lock for the sleeper
+// made the queue collapse beyond P = 2 — 3.8 frames/s at P = 32 against 83 at P = 1 — with this VM's 50 us
+// wake-ups, an artefact of the model, not of the lock).
 // Each simulated frame is audited: every item exactly once (the negative control plants a lost update).
 #pragma once
 

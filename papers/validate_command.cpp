@@ -227,6 +227,12 @@ int run_validate_command(int argc, char** argv) {
     // ---- files ------------------------------------------------------------------------------------------------
     report::ResultsDir dir("frontsteal-paper", o.out);
     write_overheads(ov, dir.file("validation-calibration.txt"));
+    std::string other_machines;  // the measured sets' machines that are not this one
+    for (const MeasuredSet& s : sets) {
+      if (s.machine != machine() && other_machines.find(s.machine) == std::string::npos) {
+        other_machines += (other_machines.empty() ? "" : "; ") + s.machine;
+      }
+    }
     std::ostringstream md;
     md << "# Simulator validation on held-out measurements\n\nMachine: " << machine() << ". Commit "
        << FRONTSTEAL_GIT_COMMIT << ". Measured sets: the main job's frontsteal.json under the study folder, scene "
@@ -236,8 +242,15 @@ int run_validate_command(int argc, char** argv) {
           "Interference enters as the co-runner's measured core share s (worker 0 runs 1/(1 − s) slower). "
           "Traces: median of "
        << o.passes
-       << " serial passes per surface, recorded on this machine (shared with other work while recorded). "
-          "The old model is the same simulator without the terms added here (cache affinity, lock hand-off to a "
+       << " serial passes per surface, recorded on this machine (shared with other work while recorded)"
+       << (other_machines.empty()
+               ? std::string(". ")
+               : ". **The measured sets come from another machine** (" + other_machines +
+                     "): the trace scale absorbs a uniform speed ratio between the two, not a difference in "
+                     "caches, locks or wake-ups; the constants come from " +
+                     (o.calibration.empty() ? std::string("this machine") : "--calibration " + o.calibration) +
+                     ". ")
+       << "The old model is the same simulator without the terms added here (cache affinity, lock hand-off to a "
           "sleeping waiter, per-frame wake-up skew) and without interference. Error = (predicted − measured) / "
           "measured.\n\n## Summary\n\n"
        << summary.markdown() << "\n## Stealing against the queue\n\n" << gap.markdown()
@@ -261,6 +274,8 @@ int run_validate_command(int argc, char** argv) {
     dir.write("validation.csv", cells.csv());
     report::Json doc = report::document("frontsteal-paper", 1, "validation", FRONTSTEAL_GIT_COMMIT);
     doc["machine"] = machine();
+    doc["measured_on"] = report::Json::array();
+    for (const MeasuredSet& s : sets) doc["measured_on"].push_back({{"set", s.name}, {"machine", s.machine}});
     doc["calibration_set"] = cal->name;
     doc["trace_scale"] = trace_scale;
     doc["trace_passes"] = o.passes;

@@ -29,6 +29,7 @@ MeasuredSet read_measured_set(const std::filesystem::path& file, const std::stri
   s.name = name;
   s.path = need(doc, "path").get<std::string>();
   s.scene = need(doc, "scene").get<std::string>();
+  s.machine = need(doc, "machine").get<std::string>();
   const report::Json& inter = need(doc, "interference");
   s.interference = need(inter, "on").get<bool>();
   if (s.interference) s.co_runner_share = need(inter, "co_runner_core_share_measured").get<double>();

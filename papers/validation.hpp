@@ -35,6 +35,7 @@ struct MeasuredCell {
 struct MeasuredSet {
   std::string name;                 // the directory it came from, e.g. walkthrough-pinned
   std::string path, scene;
+  std::string machine;              // where the main job measured it
   bool interference = false;
   double co_runner_share = 0;       // of one core, measured while the schedulers ran (0 without interference)
   double serial_ms = 0;             // the serial loop's median path time (co-runner paused)

@@ -259,6 +259,22 @@ TEST_CASE("queue: a waiter sleeps and gets the lock lock_wake_ns after the holde
   CHECK(fp::simulate(t, o, {.model = fp::Model::queue, .workers = 2}).path_ns == Approx(19));
 }
 
+TEST_CASE("queue: a running worker takes the lock while a sleeper wakes up (no convoy)") {
+  // Three items of 1, grain 1, uncontended hold 5, hand-off 4, wake-up 7. Worker 0: lock 0-5, item 0 to 6;
+  // worker 1 asks at 0, sleeps, runs again at 5 + 7 = 12. Worker 0 asks at 6: the lock is free, it takes it
+  // (6-11) and runs item 1 to 12; at 12 it asks first (ties go to the lower worker): 12-17, item 2 to 18;
+  // worker 1 finds the queue empty. Path 18. A lock reserved for the sleeper (the convoy) gives 28: worker 1
+  // holds it 12-16, worker 0 sleeps at 6 and gets it at 16 + 7 = 23.
+  const fp::CostTrace t = trace_of({{1, 1, 1}});
+  fp::Overheads o = free_overheads();
+  o.lock_uncontended_ns = 5;
+  o.lock_handoff_ns = 4;
+  o.lock_wake_ns = 7;
+  const fp::SimulatedRun r = fp::simulate(t, o, {.model = fp::Model::queue, .workers = 2});
+  CHECK(r.path_ns == Approx(18));
+  CHECK(r.lock_waits == 1);
+}
+
 TEST_CASE("calibration files carry the new constants, and files without them read as the terms off") {
   const auto file = std::filesystem::temp_directory_path() / "frontsteal-calibration-terms-test.txt";
   fp::Overheads o;

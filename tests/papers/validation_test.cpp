@@ -39,7 +39,7 @@ TEST_CASE("a main-job result is read - a missing key is refused with its name") 
   const auto file = std::filesystem::temp_directory_path() / "frontsteal-validation-test.json";
   {
     std::ofstream out(file);
-    out << R"({"path": "walkthrough", "scene": "plant:200", "interference": {"on": true,
+    out << R"({"path": "walkthrough", "scene": "plant:200", "machine": "m1", "interference": {"on": true,
               "co_runner_core_share_measured": 0.25}, "serial": {"path_ms": 800},
               "results": [{"scheduler": "queue-mutex", "workers": 2, "path_ms": 500, "path_spread_pct": 7.5},
                           {"scheduler": "tbb-affinity", "workers": 1, "path_ms": 900, "path_spread_pct": 1}]})";
@@ -47,6 +47,7 @@ TEST_CASE("a main-job result is read - a missing key is refused with its name") 
   const fp::MeasuredSet s = fp::read_measured_set(file, "walkthrough-pinned");
   CHECK(s.name == "walkthrough-pinned");
   CHECK(s.path == "walkthrough");
+  CHECK(s.machine == "m1");
   CHECK(s.interference);
   CHECK(s.co_runner_share == Approx(0.25));
   CHECK(s.serial_ms == Approx(800));
@@ -62,7 +63,8 @@ TEST_CASE("a main-job result is read - a missing key is refused with its name") 
   CHECK_FALSE(fp::model_of("tbb-affinity").has_value());
   {
     std::ofstream out(file);
-    out << R"({"path": "walkthrough", "scene": "plant:200", "interference": {"on": false}, "results": []})";
+    out << R"({"path": "walkthrough", "scene": "plant:200", "machine": "m1", "interference": {"on": false},
+              "results": []})";
   }
   try {
     fp::read_measured_set(file, "x");
