@@ -3,9 +3,9 @@
 //
 // The monitor calls "other processes" every tick of machine-wide busy time that is not its own. Here the
 // other ranks on the same node are not noise, they are the measurement: each rank samples /proc before and
-// after, the ranks of one node (MPI_COMM_TYPE_SHARED) add up their own ticks, and the node's first rank
-// assesses the node's usage with that sum as "self". Rank 0 gets the worst node's shares and a reason.
-// Collective over MPI_COMM_WORLD (start and finish).
+// after; rank 0 gathers every rank's counters, groups the ranks by node (MPI_Get_processor_name), and assesses
+// each node's usage (its first rank's machine-wide counters) with the sum of its ranks' own ticks as "self".
+// Rank 0 gets the worst node's shares and a reason. Collective over MPI_COMM_WORLD (start and finish).
 #pragma once
 
 #include <mpi.h>

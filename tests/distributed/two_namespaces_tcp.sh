@@ -4,9 +4,13 @@
 # agent that enters the second namespace, with shared-memory transports off (--mca btl tcp,self, osc pt2pt) so
 # every byte between the ranks crosses TCP. The namespaces, the veth pair and the agent are removed by a trap,
 # on success, failure or interruption. Needs root and ip(8); otherwise exits 77 (ctest: skipped).
-#   two_namespaces_tcp.sh MPIEXEC FRONTSTEAL_MPI [program arguments...]
+#   [NS_RANKS=A,B] two_namespaces_tcp.sh MPIEXEC FRONTSTEAL_MPI [program arguments...]
+# NS_RANKS: ranks in the first and the second namespace (default 1,1); ranks in one namespace talk TCP too.
 set -u
 mpiexec=$1; prog=$2; shift 2
+ranks_a=${NS_RANKS%%,*}; ranks_b=${NS_RANKS##*,}
+ranks_a=${ranks_a:-1}; ranks_b=${ranks_b:-1}
+case "$ranks_a$ranks_b" in *[!0-9]*) echo "two_namespaces_tcp: NS_RANKS must be A,B (counts)"; exit 2 ;; esac
 [ "$(id -u)" -eq 0 ] && command -v ip > /dev/null || { echo "two_namespaces_tcp: needs root and ip(8): skipped"; exit 77; }
 tag=fs$$
 a=${tag}a; b=${tag}b
@@ -26,7 +30,7 @@ for ns in "$a" "$b"; do ip -n "$ns" link set lo up; done
 ip -n "$a" link set ${tag}va up && ip -n "$b" link set ${tag}vb up || exit 1
 printf '#!/bin/sh\n# rsh agent: "host command..." runs the command in namespace %s\nshift\nexec ip netns exec %s sh -c "$*"\n' "$b" "$b" > "$agent"
 chmod +x "$agent"
-echo "two_namespaces_tcp: rank 0 in $a ($net.1), rank 1 in $b ($net.2), TCP only"
-ip netns exec "$a" "$mpiexec" --host "$(hostname),$b" -np 2 --mca plm_rsh_agent "$agent" \
+echo "two_namespaces_tcp: ranks 0..$((ranks_a - 1)) in $a ($net.1), ranks $ranks_a..$((ranks_a + ranks_b - 1)) in $b ($net.2), TCP only"
+ip netns exec "$a" "$mpiexec" --host "$(hostname):$ranks_a,$b:$ranks_b" -np $((ranks_a + ranks_b)) --mca plm_rsh_agent "$agent" \
   --mca oob_tcp_if_include $net.0/24 --mca btl_tcp_if_include $net.0/24 --mca btl tcp,self --mca pml ob1 \
   --mca osc pt2pt --mca mpi_yield_when_idle 1 "$prog" "$@"
