@@ -8,7 +8,8 @@
 # NS_RANKS: ranks in the first and the second namespace (default 1,1); ranks in one namespace talk TCP too.
 set -u
 mpiexec=$1; prog=$2; shift 2
-ranks_a=${NS_RANKS%%,*}; ranks_b=${NS_RANKS##*,}
+ns_ranks=${NS_RANKS:-1,1}
+ranks_a=${ns_ranks%%,*}; ranks_b=${ns_ranks##*,}
 ranks_a=${ranks_a:-1}; ranks_b=${ranks_b:-1}
 case "$ranks_a$ranks_b" in *[!0-9]*) echo "two_namespaces_tcp: NS_RANKS must be A,B (counts)"; exit 2 ;; esac
 [ "$(id -u)" -eq 0 ] && command -v ip > /dev/null || { echo "two_namespaces_tcp: needs root and ip(8): skipped"; exit 77; }
