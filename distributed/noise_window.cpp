@@ -48,8 +48,8 @@ NoiseVerdict NoiseWindow::finish() {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::vector<RankWindow> all(rank == 0 ? static_cast<std::size_t>(ranks) : 0);
   MPI_Gather(&mine, sizeof mine, MPI_BYTE, all.data(), sizeof mine, MPI_BYTE, 0, MPI_COMM_WORLD);
-  // Per node (its first rank's counters, the sum of its ranks' own and their children's ticks): busy flag, other share, steal
-  // share; the worst over nodes is the verdict.
+  // Per node (its first rank's counters; the sum of its ranks' own and their children's ticks): busy flag,
+  // other share, steal share; the worst over nodes is the verdict.
   double worst[3] = {0, 0, 0};
   std::string reason;
   for (std::size_t first = 0; first < all.size(); ++first) {

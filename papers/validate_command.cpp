@@ -69,7 +69,10 @@ int run_validate_command(int argc, char** argv) {
   };
   try {
     // ---- the measured sets ------------------------------------------------------------------------------
-    std::vector<MeasuredSet> sets;
+    // Filled step by step; the rows point into run.sets, which is complete before the first row is made.
+    ValidationRun run;
+    run.machine = machine();
+    std::vector<MeasuredSet>& sets = run.sets;
     for (const auto& entry : std::filesystem::directory_iterator(o.study)) {
       const auto file = entry.path() / "frontsteal.json";
       if (entry.is_directory() && std::filesystem::exists(file)) {
@@ -82,8 +85,8 @@ int run_validate_command(int argc, char** argv) {
     say(std::to_string(sets.size()) + " measured sets; calibration set " + cal->name);
 
     // ---- the constants ------------------------------------------------------------------------------------
-    Overheads ov;
-    std::optional<AffinityMeasurement> affinity;
+    Overheads& ov = run.constants;
+    std::optional<AffinityMeasurement>& affinity = run.affinity;
     if (!o.calibration.empty()) {
       ov = read_overheads(o.calibration);
     } else {
@@ -116,11 +119,11 @@ int run_validate_command(int argc, char** argv) {
         ov.affinity_measured = true;
       }
     }
-    const double trace_scale = cal->serial_ms / (traces.at(cal->path).path_cost_ns() / 1e6);
+    const double trace_scale = run.trace_scale = cal->serial_ms / (traces.at(cal->path).path_cost_ns() / 1e6);
     say("trace scale (serial loop of " + cal->name + " / the trace's Σ costs): " + report::fixed_text(trace_scale, 4));
 
     // ---- predictions ------------------------------------------------------------------------------------------
-    std::vector<ValidationRow> rows;
+    std::vector<ValidationRow>& rows = run.rows;
     const Overheads baseline = without_new_terms(ov);
     for (const MeasuredSet& s : sets) {
       const CostTrace& t = traces.at(s.path);
@@ -135,19 +138,12 @@ int run_validate_command(int argc, char** argv) {
     }
     if (rows.empty()) cli.usage_error("--threads: no measured cell at these worker counts");
 
-    // ---- the report (moving the vectors keeps the addresses the rows and the calibration set point to) ----------
-    ValidationRun run;
-    run.machine = machine();
+    // ---- the report ---------------------------------------------------------------------------------------------
     run.calibration_set = &*cal;
-    run.sets = std::move(sets);
-    run.constants = ov;
     run.constants_file = o.calibration;
-    run.affinity = affinity;
     run.affinity_repeats = o.affinity_repeats;
-    run.trace_scale = trace_scale;
     run.trace_passes = o.passes;
     run.threads = o.threads;
-    run.rows = std::move(rows);
     write_validation_report(run, o.out, o.quiet);
   } catch (const std::exception& e) {
     std::cerr << kProgram << ": " << e.what() << '\n';

@@ -42,7 +42,6 @@ void write_validation_report(const ValidationRun& run, const std::string& out, b
                          {"goal_met", "goal met (median ≤ 5 %, worst ≤ 10 %)", false},
                          {"baseline_median_abs_error_pct", "old model: median |error| (%)"},
                          {"baseline_worst_abs_error_pct", "old model: worst |error| (%)"}});
-  report::Json summary_json = report::Json::array();
   auto summarize_rows = [&](const std::string& label, auto keep) {
     std::vector<double> e, b;
     std::vector<const ValidationRow*> which;
