@@ -109,7 +109,9 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
       StealingScheduler<Fenced> scheduler({.workers = o.tessellators, .items = static_cast<ItemId>(model.surfaces.size()), .seed = 1});
       std::vector<tess::TessellationScratch> scratch(o.tessellators);
       int last_view = -1;
-      while (!pusher_done.load(std::memory_order::acquire)) {
+      // At least one tessellation frame, even when the pusher ends first: a loaded machine can delay this loop
+      // past a short run's last update (a 12-update test once ended with no tessellation at all under load).
+      while (stats.tessellation_frames == 0 || !pusher_done.load(std::memory_order::acquire)) {
         const int view = current_view.load(std::memory_order::relaxed);  // the current view matrix
         if (view == last_view) {  // this view is tessellated already: wait for the pusher's next one
           std::this_thread::sleep_for(std::chrono::microseconds(100));
