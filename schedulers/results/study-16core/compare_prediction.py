@@ -3,7 +3,7 @@
 
 The prediction (PREDICTION_DIR/simulate-plant-N.json, written by `frontsteal-paper simulate` on the 2-core
 machine from that machine's traces and calibration) and the measurement (STUDY_DIR/main/frontsteal.json, the
-main job, and STUDY_DIR/fig8/fig8.json, Fig. 8 measured) come from different machines, so absolute frames/s are
+main job, and STUDY_DIR/fig8*/fig8.json, Fig. 8 measured, one folder per run) come from different machines, so absolute frames/s are
 not compared. What is compared is how each scheduler SCALES:
 
   main job   speed-up over the serial loop, S(P) = T1 / T_P. Measured: 1 / the median of the paired per-repeat
@@ -17,9 +17,9 @@ each (scheduler, P) it reports both values, the error (predicted / measured - 1)
 inside the measured interval; then the median and worst |error| per scheduler and overall. A measured run that
 the noise monitor flagged is carried over as unreliable.
 
-usage: compare_prediction.py STUDY_DIR [--prediction DIR] [--label TEXT]
-       -> STUDY_DIR/comparison.{md,json,csv}, comparison.dat and comparison.gp (gnuplot comparison.gp draws
-          comparison.png: measured points with intervals, predicted lines)
+usage: compare_prediction.py STUDY_DIR [--prediction DIR] [--label TEXT] [--name BASE]
+       -> STUDY_DIR/BASE.{md,json,csv}, BASE.dat and BASE.gp (BASE: comparison; gnuplot BASE.gp draws
+          BASE.png: measured points with intervals, predicted lines)
 """
 import argparse, csv, json, math, os, statistics, sys
 
@@ -84,12 +84,16 @@ def bootstrap_ratio_ci(num, den, resamples=10000, seed=1):
 
 
 def fig8_rows(study, prediction_dir):
-    path = os.path.join(study, "fig8", "fig8.json")
-    if not os.path.isfile(path):
+    paths = sorted(os.path.join(study, e, "fig8.json") for e in os.listdir(study)
+                   if e.startswith("fig8") and os.path.isfile(os.path.join(study, e, "fig8.json")))
+    if not paths:
         return [], None
-    d = load(path)
-    rows = []
-    for s in d["scenes"]:
+    rows, d = [], None
+    scenes = []
+    for path in paths:
+        d = load(path)
+        scenes += d["scenes"]
+    for s in scenes:
         pred, _ = predicted_curves(prediction_dir, s["scene"])
         meas = {row["workers"]: row for row in s["measured"]}
         if 1 not in meas:
@@ -125,16 +129,16 @@ def summarize(rows):
     return out
 
 
-def write_plot(study, rows):
+def write_plot(study, rows, name):
     scenes = []
     for r in rows:
         key = (r["comparison"], r["scene"])
         if key not in scenes:
             scenes.append(key)
-    dat, gp = [], ["set terminal pngcairo size 1600,900 font 'sans,10'", "set output 'comparison.png'",
+    dat, gp = [], ["set terminal pngcairo size 1600,900 font 'sans,10'", f"set output '{name}.png'",
                    f"set multiplot layout 1,{len(scenes)} title \"Simulator prediction (lines, SIMULATED before the "
                    "run) against the 16-core measurement (points with 95 % intervals, MEASURED)\"",
-                   "set key top left", "set grid", "set xlabel 'P (workers)'"]
+                   "set key top left", "set grid", "set xlabel 'P (workers)'", "set xrange [0:17]"]
     block = 0
     for kind, scene in scenes:
         ylabel = "speed-up over the serial loop" if kind.startswith("main") else "frames/s over the same scheduler at P = 1"
@@ -148,7 +152,7 @@ def write_plot(study, rows):
             dat += [f"{r['workers']} {r['measured']:.5f} {r['measured_ci95_low']:.5f} {r['measured_ci95_high']:.5f} "
                     f"{r['predicted']:.5f}" for r in sel]
             dat += ["", ""]
-            plots.append(f"'comparison.dat' index {block} using 1:2:3:4 with yerrorbars lc {m + 1} pt 7 "
+            plots.append(f"'{name}.dat' index {block} using 1:2:3:4 with yerrorbars lc {m + 1} pt 7 "
                          f"title '{sched} measured'")
             plots.append(f"'' index {block} using 1:5 with lines lc {m + 1} dt 2 title '{sched} predicted'")
             block += 1
@@ -156,9 +160,9 @@ def write_plot(study, rows):
         gp += [f"set title '{short}: {scene}'", f"set ylabel '{ylabel}'",
                "plot x with lines lc rgb '#bbbbbb' title 'ideal', " + ", ".join(plots)]
     gp.append("unset multiplot")
-    with open(os.path.join(study, "comparison.dat"), "w") as f:
+    with open(os.path.join(study, name + ".dat"), "w") as f:
         f.write("\n".join(dat) + "\n")
-    with open(os.path.join(study, "comparison.gp"), "w") as f:
+    with open(os.path.join(study, name + ".gp"), "w") as f:
         f.write("\n".join(gp) + "\n")
 
 
@@ -168,6 +172,7 @@ def main():
     ap.add_argument("--prediction", help="folder of simulate-*.json (default STUDY_DIR/prediction)")
     ap.add_argument("--label", default="prediction committed before the run",
                     help="what the prediction is, for the headings")
+    ap.add_argument("--name", default="comparison", help="base name of the files written (default comparison)")
     args = ap.parse_args()
     study = args.study_dir
     prediction = args.prediction or os.path.join(study, "prediction")
@@ -175,15 +180,15 @@ def main():
     fig8_rows_, fig8_d = fig8_rows(study, prediction)
     rows = main_rows + fig8_rows_
     if not rows:
-        sys.exit(f"compare_prediction.py: no main/frontsteal.json or fig8/fig8.json under {study}")
+        sys.exit(f"compare_prediction.py: no main/frontsteal.json or fig8*/fig8.json under {study}")
     summary = summarize(rows)
     machine = (main_d or fig8_d).get("machine", "?")
     doc = {"schema_version": 1, "program": "compare_prediction.py", "kind": "measured against simulated",
            "prediction": prediction, "prediction_label": args.label, "measured_machine": machine,
            "measured_commit": (main_d or fig8_d).get("commit"), "summary": summary, "cells": rows}
-    with open(os.path.join(study, "comparison.json"), "w") as f:
+    with open(os.path.join(study, args.name + ".json"), "w") as f:
         json.dump(doc, f, indent=1)
-    with open(os.path.join(study, "comparison.csv"), "w", newline="") as f:
+    with open(os.path.join(study, args.name + ".csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)
@@ -205,11 +210,11 @@ def main():
                       f"[{r['measured_ci95_low']:.2f}, {r['measured_ci95_high']:.2f}] | {r['predicted']:.2f} | "
                       f"{r['error_pct']:+.1f} % | {'yes' if r['inside_interval'] else 'no'} | "
                       f"{'yes' if r['measured_reliable'] else 'NO (noise monitor)'} |")
-    with open(os.path.join(study, "comparison.md"), "w") as f:
+    with open(os.path.join(study, args.name + ".md"), "w") as f:
         f.write("\n".join(md) + "\n")
-    write_plot(study, rows)
+    write_plot(study, rows, args.name)
     print("\n".join(md[:8 + len(summary)]))
-    print(f"\nwrote {study}/comparison.md, .json, .csv, .dat, .gp")
+    print(f"\nwrote {study}/{args.name}.md, .json, .csv, .dat, .gp")
 
 
 if __name__ == "__main__":

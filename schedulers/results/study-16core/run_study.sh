@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # run_study.sh — issue 17's P = 1 … 16 study on a machine with 16 or more cores, in one bounded pass: the main
-# job (every scheduler, P = 1, 2, 4, 8, 12, 16), Fig. 8 measured (P = 1 … cores) and simulated, and greedy
-# rendering on the machine's GPU (frontsteal-render, then frontsteal-paper table2), each step under its own time
-# limit so that one slow step cannot take the others' time. Results land in OUT_DIR, one folder per step, plus
+# job (every scheduler, P = 1, 2, 4, 8, 12, 16; then at P = cores beside a co-runner, pinned and unpinned),
+# Fig. 8 measured (P = 1 … cores) and simulated, and greedy rendering on the machine's GPU (frontsteal-render,
+# then frontsteal-paper table2), each step under its own time limit so that one slow step cannot take the
+# others' time. Results land in OUT_DIR, one folder per step, plus
 # machine.txt (CPU, cores, GPU, kernel) and steps.txt (each step's exit status and seconds).
 #
 # It was written for a borrowed machine that has none of the project's packages: BIN_DIR holds the release
@@ -17,7 +18,7 @@
 set -uo pipefail
 
 if [[ $# -lt 2 || $1 == --help || $1 == -h ]]; then
-  sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 fi
 bin=$(cd "$1" && pwd) || { echo "run_study.sh: BIN_DIR $1 does not exist" >&2; exit 2; }
@@ -77,17 +78,26 @@ step() {
   return 0
 }
 
-# 1. The main job: every scheduler at P = 1 ... 16 (the default plant:15906, orbit-then-zoom).
-step main $((main_budget + 150)) "$bin/frontsteal" --threads "$threads" --repeats auto --budget "$main_budget" \
+# 1. The main job: every scheduler at P = 1, 2, 4, 8, 12, 16 (the default plant:15906, orbit-then-zoom).
+step main $((main_budget + 120)) "$bin/frontsteal" --threads "$threads" --repeats auto --budget "$main_budget" \
   --no-plot --out "$out/main"
-# 2. Fig. 8: static, queue, stealing, Chase-Lev measured at P = 1 ... cores on the three stand-ins, simulated
-#    to P = 64 with this machine's calibration and traces.
-step fig8 330 "$bin/frontsteal-paper" fig8 --repeats "$fig8_repeats" "${fig8_scenes[@]}" --no-plot --out "$out/fig8"
 if [[ $gpu == 1 ]]; then
-  # 3. Greedy rendering on the GPU: the default run (plant:4101, 30 updates/s), then as fast as it can draw.
+  # 2. Greedy rendering on the GPU: the default run (plant:4101, 30 updates/s), then as fast as it can draw.
   step render-default 60 "$bin/frontsteal-render" --out "$out/render-default"
   step render-p15906-max 60 "$bin/frontsteal-render" --scene plant:15906 --rate 0 --updates 300 --out "$out/render-p15906-max"
-  # 4. Table 2 (natural and tessellation-bound rows) with the GPU drawing.
+fi
+# 3. Interference at P = cores (issue 17 §3): a co-runner child spinning 50 % of each 10 ms on one core, pinned
+#    beside worker 0 (the asymmetric slowdown static lists cannot absorb), then unpinned (the OS places it).
+cores=$(nproc)
+step main-interference-pinned 120 "$bin/frontsteal" --threads "$cores" --repeats 10 --interference 50,pinned \
+  --no-plot --out "$out/main-interference-pinned"
+step main-interference-unpinned 120 "$bin/frontsteal" --threads "$cores" --repeats 10 --interference 50,unpinned \
+  --no-plot --out "$out/main-interference-unpinned"
+# 4. Fig. 8: static, queue, stealing, Chase-Lev measured at P = 1 ... cores on the three stand-ins, simulated
+#    to P = 64 with this machine's calibration and traces.
+step fig8 240 "$bin/frontsteal-paper" fig8 --repeats "$fig8_repeats" "${fig8_scenes[@]}" --no-plot --out "$out/fig8"
+if [[ $gpu == 1 ]]; then
+  # 5. Table 2 (natural and tessellation-bound rows) with the GPU drawing.
   step table2 150 "$bin/frontsteal-paper" table2 --no-plot --out "$out/table2"
 fi
 echo "== done $(date -u +%T)"
