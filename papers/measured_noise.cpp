@@ -27,13 +27,14 @@ report::Json JudgedComparison::json() const {
 }
 
 MeasuredNoise::MeasuredNoise(const MeasurementNoise& sampled, const noise::Thresholds& thresholds)
-    : sampled_(sampled), thresholds_(thresholds), serial_spread_(noise::spread_of(sampled.serial_path_ms)) {
+    : sampled_(sampled), thresholds_(thresholds), serial_spread_(noise::spread_of(sampled.serial_path_ms)),
+      diagnosis_(noise::diagnose_spread(sampled.serial_path_ms, sampled.serial_probe, thresholds.spread)) {
   if (const auto x = noise::assess(sampled_.during, thresholds_); x.busy) {
     warnings_.push_back("during the measurement: " + x.reason);
   }
   if (serial_spread_ > thresholds_.spread) {
     warnings_.push_back("the serial loop's repeats spread by " + fixed(100 * serial_spread_, 1) +
-                        " % (max/min - 1; threshold " + fixed(100 * thresholds_.spread, 1) + " %)");
+                        " % (max/min - 1; threshold " + fixed(100 * thresholds_.spread, 1) + " %); " + diagnosis_.line);
   }
 }
 
@@ -64,6 +65,9 @@ report::Json MeasuredNoise::json() const {
                       {"other_share", u.other_share()}, {"steal_share", u.steal_share()},
                       {"busy", noise::assess(u, thresholds_).busy}}},
           {"serial_path_ms_per_repeat", sampled_.serial_path_ms}, {"serial_spread_pct", 100 * serial_spread_},
+          {"cpu_probe_ns_per_mstep", sampled_.serial_probe}, {"cpu_probe_spread_pct", 100 * diagnosis_.probe_spread},
+          {"cpu_probe_correlation", diagnosis_.correlation}, {"cpu_varied", diagnosis_.cpu_varied},
+          {"spread_diagnosis", diagnosis_.line},
           {"busy_threshold_pct", 100 * thresholds_.other_share}, {"spread_threshold_pct", 100 * thresholds_.spread},
           {"warnings", warnings_}};
 }

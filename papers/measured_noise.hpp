@@ -15,6 +15,7 @@
 #include "core/paired_comparison.hpp"
 #include "papers/workload.hpp"
 #include "reporting/json.hpp"
+#include "schedulers/cpu_speed_probe.hpp"
 #include "schedulers/noise_monitor.hpp"
 
 namespace frontsteal::papers {
@@ -46,6 +47,7 @@ class MeasuredNoise {
   MeasurementNoise sampled_;
   noise::Thresholds thresholds_;
   double serial_spread_ = 0;
+  noise::SpreadDiagnosis diagnosis_;  // the CPU speed probe against the serial spread
   std::vector<std::string> warnings_;
 };
 

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "core/execution_counter.hpp"
+#include "schedulers/cpu_speed_probe.hpp"
 #include "schedulers/registry.hpp"
 
 namespace frontsteal::papers {
@@ -134,15 +135,17 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
     }
   }
   ExecutionCounter runs(n);
-  std::vector<double> serial_path;
+  std::vector<double> serial_path, serial_probe;
   const noise::ProcSample measure_start = noise::sample_now();
   for (int r = 0; r < o.repeats; ++r) {
     {
+      const double probe_before = noise::probe_ns_per_mstep();
       const auto t0 = Clock::now();
       for (int f = 0; f < wl.frames(); ++f) {
         for (ItemId id = 0; id < n; ++id) wl.tessellate(f, id, 0);
       }
       serial_path.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+      serial_probe.push_back((probe_before + noise::probe_ns_per_mstep()) / 2);
     }
     for (Cell& c : cells) {
       double total = 0;
@@ -182,6 +185,7 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
   if (noise) {
     noise->during = noise::usage_between(measure_start, noise::sample_now());
     noise->serial_path_ms = serial_path;
+    noise->serial_probe = serial_probe;
   }
   std::vector<MeasuredRun> out;
   for (Cell& c : cells) {

@@ -86,6 +86,7 @@ struct MeasureOptions {
 struct MeasurementNoise {
   noise::Usage during;                 // from the first repeat's start to the last repeat's end
   std::vector<double> serial_path_ms;  // the serial loop's path time, per repeat: their spread is noise too
+  std::vector<double> serial_probe;    // the CPU speed probe around each serial pass (schedulers/cpu_speed_probe.hpp)
 };
 
 // Interleaved repeats (repeat r of every cell before repeat r+1 of any). Also returns the serial loop's

@@ -67,9 +67,11 @@ void judge_rows(const Measured& m, Analysis& a) {
   if (const auto x = nz::assess(a.before_usage, o.noise); x.busy) a.noise_warnings.push_back("before the measurement: " + x.reason);
   if (const auto x = nz::assess(a.during_usage, o.noise); x.busy) a.noise_warnings.push_back("during the measurement: " + x.reason);
   if (const auto x = nz::assess(a.after_usage, o.noise); x.busy) a.noise_warnings.push_back("after the measurement: " + x.reason);
+  a.spread_diagnosis = nz::diagnose_spread(m.serial_path_ms, m.serial_probe, o.noise.spread);
   if (a.serial_spread > o.noise.spread) {
     a.noise_warnings.push_back("the serial loop's repeats spread by " + fixed(100 * a.serial_spread, 1) +
-                               " % (max/min - 1; threshold " + fixed(100 * o.noise.spread, 1) + " %)");
+                               " % (max/min - 1; threshold " + fixed(100 * o.noise.spread, 1) + " %); " +
+                               a.spread_diagnosis.line);
   }
   auto judge = [&](const std::vector<double>& candidate, const std::vector<double>& reference, nz::Usage usage) {
     ShownComparison sc_;
@@ -190,7 +192,7 @@ void summary_lines(const Measured& m, Analysis& a) {
   spread << "spread of the repeats (max/min - 1): serial loop " << fixed(100 * a.serial_spread, 1)
          << " %; schedulers: median " << fixed(median(cell_spreads), 1) << " %, max "
          << fixed(cell_spreads.empty() ? 0.0 : *std::max_element(cell_spreads.begin(), cell_spreads.end()), 1)
-         << " % (workers pinned: " << (o.pin ? "yes, --pin" : "no") << ")";
+         << " % (workers pinned: " << (o.pin ? "yes, --pin" : "no") << "); " << a.spread_diagnosis.line;
   a.spread_line = spread.str();
   std::ostringstream noise;
   noise << "noise monitor: other processes / steal, as a share of the machine: before "

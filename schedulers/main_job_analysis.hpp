@@ -15,6 +15,7 @@
 
 #include "core/paired_comparison.hpp"
 #include "reporting/json.hpp"
+#include "schedulers/cpu_speed_probe.hpp"
 #include "schedulers/main_job_report.hpp"
 #include "schedulers/round_robin_spread.hpp"
 
@@ -51,6 +52,7 @@ struct SpreadRow {
 // Everything the table, the files and the closing lines say.
 struct Analysis {
   double t1_ms = 0, serial_spread = 0;
+  nz::SpreadDiagnosis spread_diagnosis;  // the CPU speed probe against the serial spread (cpu_speed_probe.hpp)
   nz::Usage before_usage, during_usage, after_usage;
   std::vector<std::string> noise_warnings;  // run-wide reasons: every verdict is unreliable
   std::vector<Row> rows;

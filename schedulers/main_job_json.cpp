@@ -66,7 +66,12 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
   js["noise"] = {{"before", usage_json(a.before_usage, o.noise)}, {"during", usage_json(a.during_usage, o.noise)},
                  {"after", usage_json(a.after_usage, o.noise)}, {"co_runner_share_during", a.during_usage.known_share()},
                  {"load1_before", m.at_start.load1}, {"load1_after", m.at_end.load1},
-                 {"serial_spread_pct", 100 * a.serial_spread}, {"busy_threshold_pct", 100 * o.noise.other_share},
+                 {"serial_spread_pct", 100 * a.serial_spread},
+                 {"cpu_probe_ns_per_mstep", m.serial_probe},
+                 {"cpu_probe_spread_pct", 100 * a.spread_diagnosis.probe_spread},
+                 {"cpu_probe_correlation", a.spread_diagnosis.correlation},
+                 {"cpu_varied", a.spread_diagnosis.cpu_varied}, {"spread_diagnosis", a.spread_diagnosis.line},
+                 {"busy_threshold_pct", 100 * o.noise.other_share},
                  {"spread_threshold_pct", 100 * o.noise.spread}, {"verdicts", a.verdicts},
                  {"unreliable_verdicts", a.unreliable}, {"warnings", a.noise_warnings}};
   js["serial"] = {{"path_ms", a.t1_ms}, {"path_ms_per_repeat", m.serial_path_ms},

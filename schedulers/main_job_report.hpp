@@ -28,6 +28,7 @@ struct Measured {
   const std::vector<double>& serial_path_ms;
   const std::vector<std::vector<double>>& serial_frame_ms;
   const std::vector<nz::Usage>& serial_usage;
+  const std::vector<double>& serial_probe;  // the CPU speed probe around each serial pass, ns per 10^6 steps
   const std::vector<Cell>& cells;
   const std::vector<Cell>& not_available;
   nz::ProcSample at_start, measure_start, measure_end, at_end;

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "reporting/table.hpp"
+#include "schedulers/cpu_speed_probe.hpp"
 #include "schedulers/round_robin_spread.hpp"
 
 namespace frontsteal::main_job {
@@ -158,6 +159,7 @@ void Measurement::run_serial_path() {
   double total = 0;
   if (o_.pin) pinning_.pin_this_thread(0);
   co_runner_.pause();  // T1 is the undisturbed reference (no-op without --interference)
+  const double probe_before = nz::probe_ns_per_mstep();  // the same thread and core as the pass
   const nz::ProcSample before = sample();
   for (int f = 0; f < o_.frames; ++f) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -167,6 +169,7 @@ void Measurement::run_serial_path() {
     total += ms;
   }
   serial_usage_.push_back(nz::usage_between(before, sample()));
+  serial_probe_.push_back((probe_before + nz::probe_ns_per_mstep()) / 2);
   co_runner_.resume();
   if (o_.pin) pinning_.unpin_this_thread();
   serial_path_ms_.push_back(total);

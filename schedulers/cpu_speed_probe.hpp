@@ -1,0 +1,45 @@
+// cpu_speed_probe.hpp — did the CPU itself change speed between repeats? A fixed arithmetic loop timed beside
+// every serial pass, so that a spread of the serial loop's repeats can be told apart: the machine (the core
+// ran slower) or the program (the same core, a different time).
+//
+// Why: on every machine lent to this work (two 2-vCPU VMs, a 16-vCPU VM) the serial loop's repeats spread by
+// 14–76 % with nothing else running — /proc saw no other process and no steal, and the thread was on its CPU
+// the whole time. /proc cannot see what slows a vCPU that keeps running: a lower host clock, or a busy SMT
+// sibling on the host's physical core. A probe can: its work is a fixed chain of dependent integer operations
+// (a multiply and two xorshifts per step: same instructions every call, no memory traffic, no branches that
+// depend on data), so its wall time per step moves only when the core retires instructions more slowly — or
+// when the thread loses the core (then /proc's counters say so too).
+//
+// What it cannot see: contention for memory bandwidth or the last-level cache (the probe touches neither). A
+// serial spread with a flat probe therefore means "memory, caches or the program", not "certainly ours".
+//
+// The decision (diagnose_spread) is pure, so tests drive it with synthetic repeats; probe_ns_per_mstep() is
+// the only part that measures, and its own positive control is a co-runner sharing the probe's core
+// (tests/schedulers/cpu_speed_probe_test.cpp).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace frontsteal::noise {
+
+// Steps of one probe: about 2 ms on a 2020s core (a step's dependent multiply-and-xorshift chain is ~5 cycles).
+inline constexpr std::uint64_t kProbeSteps = 1'000'000;
+
+// Runs `steps` steps of the chain on the calling thread; wall-clock ns per million steps.
+double probe_ns_per_mstep(std::uint64_t steps = kProbeSteps);
+
+struct SpreadDiagnosis {
+  double serial_spread = 0;  // max / min − 1 of the serial passes
+  double probe_spread = 0;   // max / min − 1 of the probe, one value per pass
+  double correlation = 0;    // Pearson r between a pass's time and its probe (0 with fewer than 3 passes)
+  bool cpu_varied = false;   // the probe spread by more than the threshold
+  std::string line;          // one sentence for the report
+};
+
+// `serial_ms[k]` is the k-th serial pass, `probe[k]` the probe around it (same length); `threshold` is the
+// spread above which a change counts (the noise monitor's --noise-spread).
+SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std::vector<double>& probe, double threshold);
+
+}  // namespace frontsteal::noise

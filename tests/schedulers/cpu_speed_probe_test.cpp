@@ -1,0 +1,105 @@
+// cpu_speed_probe_test.cpp — the CPU speed probe (schedulers/cpu_speed_probe.hpp): the diagnosis on synthetic
+// repeats (the machine slowed down; the program varied on a steady core; a quiet run; nothing measured), and
+// the probe itself: it really runs its chain (a chain the compiler dropped would take ~0 ns), and it measures
+// the wall time of that chain, lost CPU included (a probe stopped mid-run by SIGSTOP for 300 ms must report at
+// least that). Both probe checks hold on a loaded machine: load only makes the probe slower.
+#include "schedulers/cpu_speed_probe.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+namespace nz = frontsteal::noise;
+
+TEST_CASE("probe spread with the serial spread: the machine changed speed", "[cpu_probe]") {
+  // The 16-vCPU VM of the 16-core study: bimodal passes; a probe that follows them.
+  const std::vector<double> serial{905, 1374, 982, 859, 1415};
+  const std::vector<double> probe{2.0e6, 3.05e6, 2.15e6, 1.95e6, 3.1e6};
+  const nz::SpreadDiagnosis d = nz::diagnose_spread(serial, probe, 0.05);
+  CHECK(d.cpu_varied);
+  CHECK(d.serial_spread == Approx(1415.0 / 859 - 1));
+  CHECK(d.probe_spread == Approx(3.1 / 1.95 - 1));
+  CHECK(d.correlation > 0.95);
+  CHECK(d.line.find("the CPU itself changed speed") != std::string::npos);
+}
+
+TEST_CASE("a steady probe beside a spread serial loop: not the core's clock", "[cpu_probe]") {
+  const std::vector<double> serial{905, 1374, 982, 859, 1415};
+  const std::vector<double> probe{2.04e6, 2.05e6, 2.03e6, 2.06e6, 2.04e6};
+  const nz::SpreadDiagnosis d = nz::diagnose_spread(serial, probe, 0.05);
+  CHECK_FALSE(d.cpu_varied);
+  CHECK(d.line.find("did not change") != std::string::npos);
+  CHECK(d.line.find("memory, caches or the program") != std::string::npos);
+}
+
+TEST_CASE("a quiet run only reports the probe", "[cpu_probe]") {
+  const std::vector<double> serial{517, 522, 507, 522, 524};
+  const std::vector<double> probe{2.04e6, 2.07e6, 2.03e6, 2.00e6, 2.02e6};
+  const nz::SpreadDiagnosis d = nz::diagnose_spread(serial, probe, 0.05);
+  CHECK_FALSE(d.cpu_varied);
+  CHECK(d.line.rfind("CPU speed probe: ", 0) == 0);
+}
+
+TEST_CASE("no probe values: said, no verdict", "[cpu_probe]") {
+  const nz::SpreadDiagnosis d = nz::diagnose_spread({900, 1400}, {}, 0.05);
+  CHECK_FALSE(d.cpu_varied);
+  CHECK(d.line == "CPU speed probe: not measured");
+  CHECK(nz::diagnose_spread({900, 1400}, {2e6}, 0.05).line == "CPU speed probe: not measured");
+}
+
+TEST_CASE("the probe runs its chain: no faster than 0.2 ns per dependent step", "[cpu_probe]") {
+  // A multiply and two xorshifts per step, each needing the last: no core retires that in under a cycle, and
+  // no core runs above 5 GHz. A chain the compiler removed would report close to 0.
+  const double ns = nz::probe_ns_per_mstep(2'000'000);
+  CHECK(ns > 0.2e6);
+  CHECK(ns < 1e9);  // and it ends: under 1 us per step even on a loaded machine
+}
+
+// One try: a child runs 1-million-step probes back to back, writing each result; it is stopped for 300 ms
+// while it runs, resumed, and killed once the results after the stop are read. The largest result is returned:
+// the probe that was running when the stop came (unless the stop landed inside a write between two probes,
+// which a retry takes care of).
+double largest_probe_across_a_stop() {
+  int results[2];
+  REQUIRE(pipe(results) == 0);
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    close(results[0]);
+    for (;;) {
+      const double ns = nz::probe_ns_per_mstep(1'000'000);
+      if (write(results[1], &ns, sizeof ns) != static_cast<ssize_t>(sizeof ns)) _exit(0);
+    }
+  }
+  close(results[1]);
+  double ns = 0, largest = 0;
+  REQUIRE(read(results[0], &ns, sizeof ns) == static_cast<ssize_t>(sizeof ns));  // it is probing
+  REQUIRE(kill(child, SIGSTOP) == 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  REQUIRE(kill(child, SIGCONT) == 0);
+  // Blocking reads: the probe that was stopped reports once the child has had the CPU again, however long a
+  // loaded machine makes that; what it wrote before the stop comes first. 200 results (~0.4 s) are plenty.
+  for (int k = 0; k < 200 && largest < 300e6; ++k) {
+    REQUIRE(read(results[0], &ns, sizeof ns) == static_cast<ssize_t>(sizeof ns));
+    largest = std::max(largest, ns);
+  }
+  REQUIRE(kill(child, SIGKILL) == 0);
+  int status = 0;
+  REQUIRE(waitpid(child, &status, 0) == child);
+  close(results[0]);
+  return largest;
+}
+
+TEST_CASE("the probe counts lost CPU: a probe stopped for 300 ms reports at least that", "[cpu_probe]") {
+  // 300 ms inside a 1-million-step probe is 300e6 ns per million steps, ~150 times a probe's own time on an
+  // idle core (and still ~30 times on a loaded one). Up to 5 tries (see above); each takes ~0.4 s.
+  double largest = 0;
+  for (int attempt = 0; attempt < 5 && largest < 300e6; ++attempt) largest = largest_probe_across_a_stop();
+  CHECK(largest >= 300e6);
+}
