@@ -34,16 +34,24 @@ double pearson(const std::vector<double>& x, const std::vector<double>& y) {
 
 double probe_ns_per_mstep(std::uint64_t steps) {
   if (steps == 0) steps = 1;
-  std::uint64_t x = 0x9e3779b97f4a7c15ull;
+  // Four independent chains, so that the multiplier and the ALUs are kept busy (throughput-bound): a busy SMT
+  // sibling on the host's core competes for exactly those, and a lone latency-bound chain would barely notice.
+  std::uint64_t a = 0x9e3779b97f4a7c15ull, b = 0xbf58476d1ce4e5b9ull, c = 0x94d049bb133111ebull, d = 0x2545f4914f6cdd1dull;
   const auto t0 = std::chrono::steady_clock::now();
   for (std::uint64_t i = 0; i < steps; ++i) {
-    x = x * 6364136223846793005ull + 1442695040888963407ull;  // each step needs the last: no overlap
-    x ^= x >> 29;
-    x ^= x << 17;
+    a = a * 6364136223846793005ull + 1442695040888963407ull;
+    b = b * 6364136223846793005ull + 1442695040888963407ull;
+    c = c * 6364136223846793005ull + 1442695040888963407ull;
+    d = d * 6364136223846793005ull + 1442695040888963407ull;
+    a ^= a >> 29;
+    b ^= b >> 29;
+    c ^= c >> 29;
+    d ^= d >> 29;
   }
   const auto t1 = std::chrono::steady_clock::now();
-  // Keep the chain: without a use of x the compiler may drop the loop.
-  asm volatile("" : : "r"(x) : "memory");
+  // Keep the chains: without a use of their values the compiler may drop the loop.
+  const std::uint64_t all = a ^ b ^ c ^ d;
+  asm volatile("" : : "r"(all) : "memory");
   return std::chrono::duration<double, std::nano>(t1 - t0).count() * 1e6 / static_cast<double>(steps);
 }
 
@@ -63,9 +71,14 @@ SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std:
                                  " (correlation with the passes r = " + r + ")";
   if (d.serial_spread <= threshold) {
     d.line = "CPU speed probe: " + probe_says;
-  } else if (d.cpu_varied) {
+  } else if (d.cpu_varied && d.probe_spread >= 0.5 * d.serial_spread) {
     d.line = "the CPU itself changed speed between repeats: " + probe_says +
+             ", most of the serial loop's " + pct(d.serial_spread) +
              "; /proc cannot see this (a lower host clock or a busy SMT sibling on the host): the machine, not the program";
+  } else if (d.cpu_varied) {
+    d.line = "the CPU's speed changed between repeats, but less than the serial loop's time: " + probe_says +
+             " against the passes' " + pct(d.serial_spread) +
+             "; the rest is memory, caches, the program, or a slowdown the arithmetic probe does not feel";
   } else {
     d.line = "the CPU's speed did not change between repeats (" + probe_says +
              "): the serial loop's own time varied — memory, caches or the program, not the core's clock";

@@ -5,17 +5,18 @@
 // Why: on every machine lent to this work (two 2-vCPU VMs, a 16-vCPU VM) the serial loop's repeats spread by
 // 14–76 % with nothing else running — /proc saw no other process and no steal, and the thread was on its CPU
 // the whole time. /proc cannot see what slows a vCPU that keeps running: a lower host clock, or a busy SMT
-// sibling on the host's physical core. A probe can: its work is a fixed chain of dependent integer operations
-// (a multiply and two xorshifts per step: same instructions every call, no memory traffic, no branches that
-// depend on data), so its wall time per step moves only when the core retires instructions more slowly — or
-// when the thread loses the core (then /proc's counters say so too).
+// sibling on the host's physical core. A probe can: its work is fixed — four independent chains of integer
+// multiply-and-xorshift steps (the same instructions every call, no memory traffic, no branches that depend on
+// data), enough of them to keep the multiplier busy, so a busy SMT sibling competing for it slows the probe as
+// a lower clock does — and its wall time per step moves only when the core retires those instructions more
+// slowly, or when the thread loses the core (then /proc's counters say so too).
 //
 // What it cannot see: contention for memory bandwidth or the last-level cache (the probe touches neither). A
 // serial spread with a flat probe therefore means "memory, caches or the program", not "certainly ours".
 //
 // The decision (diagnose_spread) is pure, so tests drive it with synthetic repeats; probe_ns_per_mstep() is
-// the only part that measures, and its own positive control is a co-runner sharing the probe's core
-// (tests/schedulers/cpu_speed_probe_test.cpp).
+// the only part that measures, and its checks are a chain the compiler dropped (it would report ~0 ns) and a
+// probe stopped by SIGSTOP that must report the lost time (tests/schedulers/cpu_speed_probe_test.cpp).
 #pragma once
 
 #include <cstdint>
@@ -24,7 +25,7 @@
 
 namespace frontsteal::noise {
 
-// Steps of one probe: about 2 ms on a 2020s core (a step's dependent multiply-and-xorshift chain is ~5 cycles).
+// Steps of one probe: about 1–2 ms on a 2020s core (a step is four multiplies and eight shift/xor operations).
 inline constexpr std::uint64_t kProbeSteps = 1'000'000;
 
 // Runs `steps` steps of the chain on the calling thread; wall-clock ns per million steps.
@@ -34,7 +35,8 @@ struct SpreadDiagnosis {
   double serial_spread = 0;  // max / min − 1 of the serial passes
   double probe_spread = 0;   // max / min − 1 of the probe, one value per pass
   double correlation = 0;    // Pearson r between a pass's time and its probe (0 with fewer than 3 passes)
-  bool cpu_varied = false;   // the probe spread by more than the threshold
+  bool cpu_varied = false;   // the probe spread by more than the threshold (when it spread by at least half the
+                             // serial loop's spread, the report calls it the machine's doing)
   std::string line;          // one sentence for the report
 };
 
