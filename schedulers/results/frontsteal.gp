@@ -8,11 +8,11 @@ set xlabel 'workers P'
 set ylabel 'speed-up (T1 / T_P)'
 set xrange [0.5:4.5]
 set yrange [0:*]
-plot for [i=0:11] 'frontsteal-speedup.dat' index i using 1:2 with linespoints lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1), (x <= 2 ? x : 2) with lines dashtype 2 lc 'black' title 'ideal'
+plot for [i=0:13] 'frontsteal-speedup.dat' index i using 1:2 with linespoints lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1), (x <= 2 ? x : 2) with lines dashtype 2 lc 'black' title 'ideal'
 set output 'frontsteal-frames.png'
 set title 'Frame time along the camera path (measured), P = 2 (frames 0-11 orbit, then zoom)'
 set xlabel 'frame'
 set ylabel 'ms'
 set autoscale x
 set yrange [0:*]
-plot for [i=0:12] 'frontsteal-frames.dat' index i using 1:2 with linespoints lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1)
+plot for [i=0:14] 'frontsteal-frames.dat' index i using 1:2 with linespoints lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1)
