@@ -28,7 +28,8 @@ report::Json JudgedComparison::json() const {
 
 MeasuredNoise::MeasuredNoise(const MeasurementNoise& sampled, const noise::Thresholds& thresholds)
     : sampled_(sampled), thresholds_(thresholds), serial_spread_(noise::spread_of(sampled.serial_path_ms)),
-      diagnosis_(noise::diagnose_spread(sampled.serial_path_ms, sampled.serial_probe, thresholds.spread)) {
+      diagnosis_(noise::diagnose_spread(sampled.serial_path_ms, sampled.serial_probe, thresholds.spread,
+                                        sampled.serial_passes)) {
   if (const auto x = noise::assess(sampled_.during, thresholds_); x.busy) {
     warnings_.push_back("during the measurement: " + x.reason);
   }
@@ -67,6 +68,8 @@ report::Json MeasuredNoise::json() const {
           {"serial_path_ms_per_repeat", sampled_.serial_path_ms}, {"serial_spread_pct", 100 * serial_spread_},
           {"cpu_probe_ns_per_mstep", sampled_.serial_probe}, {"cpu_probe_spread_pct", 100 * diagnosis_.probe_spread},
           {"cpu_probe_correlation", diagnosis_.correlation}, {"cpu_varied", diagnosis_.cpu_varied},
+          {"serial_passes", noise::columns(sampled_.serial_passes)},
+          {"serial_user_mode_only", diagnosis_.user_mode_only}, {"spread_blames_hardware", diagnosis_.machine},
           {"spread_diagnosis", diagnosis_.line},
           {"busy_threshold_pct", 100 * thresholds_.other_share}, {"spread_threshold_pct", 100 * thresholds_.spread},
           {"warnings", warnings_}};

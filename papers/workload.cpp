@@ -136,15 +136,18 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
   }
   ExecutionCounter runs(n);
   std::vector<double> serial_path, serial_probe;
+  std::vector<noise::PassUsage> serial_passes;
   const noise::ProcSample measure_start = noise::sample_now();
   for (int r = 0; r < o.repeats; ++r) {
     {
       const double probe_before = noise::probe_ns_per_mstep();
+      const noise::PassMeter meter;
       const auto t0 = Clock::now();
       for (int f = 0; f < wl.frames(); ++f) {
         for (ItemId id = 0; id < n; ++id) wl.tessellate(f, id, 0);
       }
       serial_path.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+      serial_passes.push_back(meter.stop());
       serial_probe.push_back((probe_before + noise::probe_ns_per_mstep()) / 2);
     }
     for (Cell& c : cells) {
@@ -186,6 +189,7 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
     noise->during = noise::usage_between(measure_start, noise::sample_now());
     noise->serial_path_ms = serial_path;
     noise->serial_probe = serial_probe;
+    noise->serial_passes = serial_passes;
   }
   std::vector<MeasuredRun> out;
   for (Cell& c : cells) {

@@ -15,6 +15,7 @@
 #include "core/machine_info.hpp"
 #include "papers/cost_trace.hpp"
 #include "schedulers/noise_monitor.hpp"
+#include "schedulers/pass_usage.hpp"
 #include "schedulers/scheduler.hpp"
 #include "schedulers/static_scheduler.hpp"
 #include "tessellate/path_scene.hpp"
@@ -87,6 +88,7 @@ struct MeasurementNoise {
   noise::Usage during;                 // from the first repeat's start to the last repeat's end
   std::vector<double> serial_path_ms;  // the serial loop's path time, per repeat: their spread is noise too
   std::vector<double> serial_probe;    // the CPU speed probe around each serial pass (schedulers/cpu_speed_probe.hpp)
+  std::vector<noise::PassUsage> serial_passes;  // what each serial pass's thread did (schedulers/pass_usage.hpp)
 };
 
 // Interleaved repeats (repeat r of every cell before repeat r+1 of any). Also returns the serial loop's

@@ -1,6 +1,7 @@
 // cpu_speed_probe.cpp — the probe and the spread diagnosis (cpu_speed_probe.hpp).
 #include "schedulers/cpu_speed_probe.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -55,7 +56,8 @@ double probe_ns_per_mstep(std::uint64_t steps) {
   return std::chrono::duration<double, std::nano>(t1 - t0).count() * 1e6 / static_cast<double>(steps);
 }
 
-SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std::vector<double>& probe, double threshold) {
+SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std::vector<double>& probe, double threshold,
+                                const std::vector<PassUsage>& passes) {
   SpreadDiagnosis d;
   d.serial_spread = spread_of(serial_ms);
   if (probe.size() != serial_ms.size() || probe.empty()) {
@@ -65,23 +67,48 @@ SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std:
   d.probe_spread = spread_of(probe);
   d.correlation = probe.size() >= 3 ? pearson(serial_ms, probe) : 0.0;
   d.cpu_varied = d.probe_spread > threshold;
+  d.user_mode_only = passes.size() == serial_ms.size() && user_mode_only(passes);
   char r[32];
   std::snprintf(r, sizeof r, "%.2f", d.correlation);
   const std::string probe_says = "a fixed arithmetic loop timed beside each serial pass spread " + pct(d.probe_spread) +
                                  " (correlation with the passes r = " + r + ")";
+  std::string work_says;  // what the passes' own threads did, when measured
+  if (passes.size() == serial_ms.size() && !passes.empty()) {
+    long faults = 0, blocked = 0, preempted = 0;
+    double system_ms = 0;
+    for (const PassUsage& p : passes) {
+      faults += p.faults;
+      blocked += p.voluntary_switches;
+      preempted = std::max(preempted, p.involuntary_switches);
+      system_ms += p.system_ms;
+    }
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "%ld page faults, %.0f ms system time, %ld blocking waits in all passes; at most %ld "
+                  "involuntary switches in one", faults, system_ms, blocked, preempted);
+    work_says = buf;
+  }
   if (d.serial_spread <= threshold) {
     d.line = "CPU speed probe: " + probe_says;
   } else if (d.cpu_varied && d.probe_spread >= 0.5 * d.serial_spread) {
+    d.machine = true;
     d.line = "the CPU itself changed speed between repeats: " + probe_says +
              ", most of the serial loop's " + pct(d.serial_spread) +
              "; /proc cannot see this (a lower host clock or a busy SMT sibling on the host): the machine, not the program";
+  } else if (d.user_mode_only) {
+    d.machine = true;
+    d.line = "every serial pass did the same work in user mode (" + work_says + ") and still spread " +
+             pct(d.serial_spread) + ": the same instructions ran slower, so the hardware or its state, not the "
+             "program's work — " + probe_says + "; the rest is what an arithmetic loop does not feel (caches or "
+             "memory shared with other tenants, or caches left cold by the run before)";
   } else if (d.cpu_varied) {
     d.line = "the CPU's speed changed between repeats, but less than the serial loop's time: " + probe_says +
              " against the passes' " + pct(d.serial_spread) +
-             "; the rest is memory, caches, the program, or a slowdown the arithmetic probe does not feel";
+             "; the rest is memory, caches, the program, or a slowdown the arithmetic probe does not feel" +
+             (work_says.empty() ? "" : " (" + work_says + ")");
   } else {
     d.line = "the CPU's speed did not change between repeats (" + probe_says +
-             "): the serial loop's own time varied — memory, caches or the program, not the core's clock";
+             "): the serial loop's own time varied — memory, caches or the program, not the core's clock" +
+             (work_says.empty() ? "" : " (" + work_says + ")");
   }
   return d;
 }

@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "schedulers/pass_usage.hpp"
+
 namespace frontsteal::noise {
 
 // Steps of one probe: about 1–2 ms on a 2020s core (a step is four multiplies and eight shift/xor operations).
@@ -37,11 +39,16 @@ struct SpreadDiagnosis {
   double correlation = 0;    // Pearson r between a pass's time and its probe (0 with fewer than 3 passes)
   bool cpu_varied = false;   // the probe spread by more than the threshold (when it spread by at least half the
                              // serial loop's spread, the report calls it the machine's doing)
+  bool user_mode_only = false;  // every pass ran in user mode only (pass_usage.hpp): the same work each time
+  bool machine = false;      // the report blames the hardware, not the program's work (the probe moved as much as
+                             // the passes, or the same user-mode work ran slower)
   std::string line;          // one sentence for the report
 };
 
-// `serial_ms[k]` is the k-th serial pass, `probe[k]` the probe around it (same length); `threshold` is the
-// spread above which a change counts (the noise monitor's --noise-spread).
-SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std::vector<double>& probe, double threshold);
+// `serial_ms[k]` is the k-th serial pass, `probe[k]` the probe around it (same length), `passes[k]` what the
+// pass's thread did (empty: not measured); `threshold` is the spread above which a change counts (the noise
+// monitor's --noise-spread).
+SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std::vector<double>& probe, double threshold,
+                                const std::vector<PassUsage>& passes = {});
 
 }  // namespace frontsteal::noise

@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
   run.finish();
 
   const mj::Measured measured{o, cores, scene.wl, scene.wl.dense, warm.item_ns, warm.item_estimate,
-                              run.serial_path_ms(), run.serial_frame_ms(), run.serial_usage(), run.serial_probe(), run.cells(),
+                              run.serial_path_ms(), run.serial_frame_ms(), run.serial_usage(), run.serial_probe(),
+                              run.serial_pass_usage(), run.cells(),
                               run.not_available(), at_start, run.measure_start(), run.measure_end(), run.at_end(),
                               repeats_note, run.co_runner_cpu()};
   return mj::write_results(measured, progress.seconds());

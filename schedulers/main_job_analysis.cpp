@@ -67,7 +67,7 @@ void judge_rows(const Measured& m, Analysis& a) {
   if (const auto x = nz::assess(a.before_usage, o.noise); x.busy) a.noise_warnings.push_back("before the measurement: " + x.reason);
   if (const auto x = nz::assess(a.during_usage, o.noise); x.busy) a.noise_warnings.push_back("during the measurement: " + x.reason);
   if (const auto x = nz::assess(a.after_usage, o.noise); x.busy) a.noise_warnings.push_back("after the measurement: " + x.reason);
-  a.spread_diagnosis = nz::diagnose_spread(m.serial_path_ms, m.serial_probe, o.noise.spread);
+  a.spread_diagnosis = nz::diagnose_spread(m.serial_path_ms, m.serial_probe, o.noise.spread, m.serial_pass_usage);
   if (a.serial_spread > o.noise.spread) {
     a.noise_warnings.push_back("the serial loop's repeats spread by " + fixed(100 * a.serial_spread, 1) +
                                " % (max/min - 1; threshold " + fixed(100 * o.noise.spread, 1) + " %); " +

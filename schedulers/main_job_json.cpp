@@ -70,7 +70,10 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
                  {"cpu_probe_ns_per_mstep", m.serial_probe},
                  {"cpu_probe_spread_pct", 100 * a.spread_diagnosis.probe_spread},
                  {"cpu_probe_correlation", a.spread_diagnosis.correlation},
-                 {"cpu_varied", a.spread_diagnosis.cpu_varied}, {"spread_diagnosis", a.spread_diagnosis.line},
+                 {"cpu_varied", a.spread_diagnosis.cpu_varied},
+                 {"serial_passes", nz::columns(m.serial_pass_usage)},
+                 {"serial_user_mode_only", a.spread_diagnosis.user_mode_only},
+                 {"spread_blames_hardware", a.spread_diagnosis.machine}, {"spread_diagnosis", a.spread_diagnosis.line},
                  {"busy_threshold_pct", 100 * o.noise.other_share},
                  {"spread_threshold_pct", 100 * o.noise.spread}, {"verdicts", a.verdicts},
                  {"unreliable_verdicts", a.unreliable}, {"warnings", a.noise_warnings}};

@@ -14,6 +14,7 @@
 #include "schedulers/main_job_options.hpp"
 #include "schedulers/main_job_workload.hpp"
 #include "schedulers/noise_monitor.hpp"
+#include "schedulers/pass_usage.hpp"
 
 namespace frontsteal::main_job {
 
@@ -29,6 +30,7 @@ struct Measured {
   const std::vector<std::vector<double>>& serial_frame_ms;
   const std::vector<nz::Usage>& serial_usage;
   const std::vector<double>& serial_probe;  // the CPU speed probe around each serial pass, ns per 10^6 steps
+  const std::vector<nz::PassUsage>& serial_pass_usage;  // what each serial pass's thread did (pass_usage.hpp)
   const std::vector<Cell>& cells;
   const std::vector<Cell>& not_available;
   nz::ProcSample at_start, measure_start, measure_end, at_end;

@@ -161,6 +161,7 @@ void Measurement::run_serial_path() {
   co_runner_.pause();  // T1 is the undisturbed reference (no-op without --interference)
   const double probe_before = nz::probe_ns_per_mstep();  // the same thread and core as the pass
   const nz::ProcSample before = sample();
+  const nz::PassMeter meter;
   for (int f = 0; f < o_.frames; ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     for (ItemId id = 0; id < n; ++id) tess_.run(f, id, 0);
@@ -168,6 +169,7 @@ void Measurement::run_serial_path() {
     per_frame.push_back(ms);
     total += ms;
   }
+  serial_pass_usage_.push_back(meter.stop());
   serial_usage_.push_back(nz::usage_between(before, sample()));
   serial_probe_.push_back((probe_before + nz::probe_ns_per_mstep()) / 2);
   co_runner_.resume();

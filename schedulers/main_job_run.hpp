@@ -22,6 +22,7 @@
 #include "schedulers/main_job_progress.hpp"
 #include "schedulers/main_job_workload.hpp"
 #include "schedulers/noise_monitor.hpp"
+#include "schedulers/pass_usage.hpp"
 
 namespace frontsteal::main_job {
 
@@ -51,6 +52,7 @@ class Measurement {
   const std::vector<std::vector<double>>& serial_frame_ms() const { return serial_frame_ms_; }
   const std::vector<nz::Usage>& serial_usage() const { return serial_usage_; }
   const std::vector<double>& serial_probe() const { return serial_probe_; }
+  const std::vector<nz::PassUsage>& serial_pass_usage() const { return serial_pass_usage_; }
   const std::vector<Cell>& cells() const { return cells_; }
   const std::vector<Cell>& not_available() const { return not_available_; }
   const nz::ProcSample& measure_start() const { return measure_start_; }
@@ -78,6 +80,7 @@ class Measurement {
   std::vector<std::vector<double>> serial_frame_ms_;
   std::vector<nz::Usage> serial_usage_;  // per repeat: the machine while the serial loop ran
   std::vector<double> serial_probe_;     // per repeat: the CPU speed probe around the serial loop (cpu_speed_probe.hpp)
+  std::vector<nz::PassUsage> serial_pass_usage_;  // per repeat: what the serial loop's thread did (pass_usage.hpp)
   nz::ProcSample measure_start_, measure_end_, at_end_;
 };
 

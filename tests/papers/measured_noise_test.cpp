@@ -36,7 +36,7 @@ const std::vector<double> kSteadySerial = {100, 101, 100}, kDriftingSerial = {10
 }  // namespace
 
 TEST_CASE("a quiet measurement keeps its verdict", "[papers][noise]") {
-  const fp::MeasuredNoise noise({kQuiet, kSteadySerial, {}});
+  const fp::MeasuredNoise noise({kQuiet, kSteadySerial, {}, {}});
   CHECK(noise.warnings().empty());
   const auto j = noise.judge(cell("stealing/Fenced", {90, 91, 89}, kQuiet), cell("queue-mutex", {100, 100, 100}, kQuiet));
   CHECK(j.reliable());
@@ -49,7 +49,7 @@ TEST_CASE("a quiet measurement keeps its verdict", "[papers][noise]") {
 }
 
 TEST_CASE("others on the machine during the measurement make every verdict unreliable", "[papers][noise]") {
-  const fp::MeasuredNoise noise({kBusy, kSteadySerial, {}});
+  const fp::MeasuredNoise noise({kBusy, kSteadySerial, {}, {}});
   REQUIRE(noise.warnings().size() == 1);
   const auto j = noise.judge(cell("stealing/Fenced", {90, 91, 89}, kQuiet), cell("queue-mutex", {100, 100, 100}, kQuiet));
   CHECK_FALSE(j.reliable());
@@ -63,7 +63,7 @@ TEST_CASE("others on the machine during the measurement make every verdict unrel
 }
 
 TEST_CASE("a busy cell makes its comparisons unreliable, and only those", "[papers][noise]") {
-  const fp::MeasuredNoise noise({kQuiet, kSteadySerial, {}});
+  const fp::MeasuredNoise noise({kQuiet, kSteadySerial, {}, {}});
   const auto busy = noise.judge(cell("stealing/Fenced", {90, 91, 89}, kBusy), cell("queue-mutex", {100, 100, 100}, kQuiet));
   CHECK_FALSE(busy.reliable());
   CHECK(busy.unreliable_because.find("stealing/Fenced P=2") != std::string::npos);
@@ -72,7 +72,7 @@ TEST_CASE("a busy cell makes its comparisons unreliable, and only those", "[pape
 }
 
 TEST_CASE("a drifting serial loop makes every verdict unreliable", "[papers][noise]") {
-  const fp::MeasuredNoise noise({kQuiet, kDriftingSerial, {}});
+  const fp::MeasuredNoise noise({kQuiet, kDriftingSerial, {}, {}});
   REQUIRE(noise.warnings().size() == 1);
   CHECK(noise.warnings()[0].find("spread by 30.0 %") != std::string::npos);
   CHECK_FALSE(noise.judge(cell("a", {90, 91, 89}, kQuiet), cell("b", {100, 100, 100}, kQuiet)).reliable());
@@ -82,11 +82,11 @@ TEST_CASE("a drifting serial loop beside a drifting CPU probe: the warning says 
           "[papers][noise]") {
   std::vector<double> probe;
   for (double ms : kDriftingSerial) probe.push_back(2e4 * ms);  // the probe follows the passes
-  const fp::MeasuredNoise noise({kQuiet, kDriftingSerial, probe});
+  const fp::MeasuredNoise noise({kQuiet, kDriftingSerial, probe, {}});
   REQUIRE(noise.warnings().size() == 1);
   CHECK(noise.warnings()[0].find("the CPU itself changed speed") != std::string::npos);
   CHECK(noise.json()["cpu_varied"] == true);
-  const fp::MeasuredNoise steady({kQuiet, kDriftingSerial, std::vector<double>(kDriftingSerial.size(), 2e6)});
+  const fp::MeasuredNoise steady({kQuiet, kDriftingSerial, std::vector<double>(kDriftingSerial.size(), 2e6), {}});
   CHECK(steady.warnings()[0].find("did not change") != std::string::npos);
   CHECK(steady.json()["cpu_varied"] == false);
 }

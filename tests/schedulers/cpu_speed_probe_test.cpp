@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -47,6 +48,56 @@ TEST_CASE("a probe that moved less than the serial loop: part machine, part not"
   CHECK(d.correlation > 0.5);
   CHECK(d.line.find("less than the serial loop's time") != std::string::npos);
   CHECK(d.line.find("the machine, not the program") == std::string::npos);
+}
+
+TEST_CASE("the same user-mode work in every pass, a steady probe: still the machine", "[cpu_probe]") {
+  // The 2-vCPU VM of stop 25: no fault, no system time, never blocked, and one pass 18 % slower.
+  const std::vector<double> serial{523, 517, 614, 538, 527};
+  const std::vector<double> probe{2.04e6, 2.05e6, 2.06e6, 2.04e6, 2.05e6};
+  std::vector<nz::PassUsage> passes;
+  for (double ms : serial) passes.push_back({.wall_ms = ms, .user_ms = ms - 2, .involuntary_switches = 4});
+  const nz::SpreadDiagnosis machine = nz::diagnose_spread(serial, probe, 0.05, passes);
+  CHECK(machine.user_mode_only);
+  CHECK(machine.machine);
+  CHECK(machine.line.find("did the same work in user mode") != std::string::npos);
+  CHECK(machine.line.find("not the program's work") != std::string::npos);
+  // Negative control: one pass took page faults (the program touched new memory) — then it is not the machine's.
+  passes[2].faults = 1200;
+  const nz::SpreadDiagnosis faulted = nz::diagnose_spread(serial, probe, 0.05, passes);
+  CHECK_FALSE(faulted.user_mode_only);
+  CHECK_FALSE(faulted.machine);
+  CHECK(faulted.line.find("1200 page faults") != std::string::npos);
+}
+
+TEST_CASE("a pass's own thread: page faults and blocking are seen, pure arithmetic is user mode only", "[cpu_probe]") {
+  {  // pure arithmetic: no fault, never blocked (once its code and stack pages are in: run it once first)
+    nz::probe_ns_per_mstep(1000);
+    const nz::PassMeter meter;
+    nz::probe_ns_per_mstep(2'000'000);
+    const nz::PassUsage u = meter.stop();
+    CHECK(u.faults == 0);
+    CHECK(u.voluntary_switches == 0);
+    CHECK(u.wall_ms > 0);
+  }
+  {  // 4 MiB of fresh anonymous memory, every page touched: a fault per page at least once
+    constexpr std::size_t kBytes = 4u << 20;
+    void* p = mmap(nullptr, kBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    REQUIRE(p != MAP_FAILED);
+    const nz::PassMeter meter;
+    for (std::size_t i = 0; i < kBytes; i += 4096) static_cast<volatile char*>(p)[i] = 1;
+    const nz::PassUsage u = meter.stop();
+    munmap(p, kBytes);
+    CHECK(u.faults >= 1);
+    CHECK_FALSE(nz::user_mode_only({u}));
+  }
+  {  // a sleep blocks
+    const nz::PassMeter meter;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const nz::PassUsage u = meter.stop();
+    CHECK(u.voluntary_switches >= 1);
+    CHECK_FALSE(nz::user_mode_only({u}));
+  }
+  CHECK_FALSE(nz::user_mode_only({}));
 }
 
 TEST_CASE("a quiet run only reports the probe", "[cpu_probe]") {
