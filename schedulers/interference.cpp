@@ -1,5 +1,6 @@
 // interference.cpp — the co-runner child process and its guard (interference.hpp).
 #include "schedulers/interference.hpp"
+#include "schedulers/noise_monitor.hpp"
 
 #include <sched.h>
 #include <signal.h>
@@ -13,8 +14,6 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -154,10 +153,7 @@ std::optional<std::uint64_t> parse_process_ticks(std::string_view line) {
 
 std::uint64_t process_ticks(pid_t pid) {
   if (pid <= 0) return 0;
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  if (!in) return 0;
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return parse_process_ticks(text).value_or(0);
+  return parse_process_ticks(noise::read_proc_file("/proc/" + std::to_string(pid) + "/stat")).value_or(0);
 }
 
 std::string InterferenceSpec::describe() const {

@@ -1,6 +1,7 @@
 // llvm_openmp_child.cpp — the parent's side of openmp-static-steal (llvm_openmp_child.hpp): spawn, protocol,
 // audit, reaping.
 #include "schedulers/llvm_openmp_child.hpp"
+#include "schedulers/noise_monitor.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -15,7 +16,6 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -288,8 +288,7 @@ std::vector<ChildFrame> LlvmOpenMpChild::run_path() {
 
 std::uint64_t LlvmOpenMpChild::cpu_ticks() const {
   if (pid_ <= 0) return 0;
-  std::ifstream in("/proc/" + std::to_string(pid_) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = noise::read_proc_file("/proc/" + std::to_string(pid_) + "/stat");
   // "pid (comm) state ppid ...": comm may hold spaces, so fields are counted after the last ')'; utime and
   // stime are fields 14 and 15, i.e. the 12th and 13th after it.
   const auto close = text.rfind(')');

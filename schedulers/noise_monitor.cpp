@@ -3,24 +3,21 @@
 
 #include "schedulers/interference.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 
 namespace frontsteal::noise {
 namespace {
 
-std::string read_file(const char* path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 std::string percent(double share) {
   char buf[32];
@@ -73,10 +70,34 @@ ProcSample parse_sample(std::string_view proc_stat, std::string_view self_stat, 
 
 ProcSample sample_now(pid_t known) {
   const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-  ProcSample s = parse_sample(read_file("/proc/stat"), read_file("/proc/self/stat"), read_file("/proc/loadavg"), now);
+  ProcSample s = parse_sample(read_proc_file("/proc/stat"), read_proc_file("/proc/self/stat"), read_proc_file("/proc/loadavg"), now);
   if (known > 0) s.known_ticks = interference::process_ticks(known);
   s.children_ticks = children_ticks(::getpid(), known);
   return s;
+}
+
+std::string read_open_file(int fd) noexcept {
+  try {
+    std::string text;
+    char buf[4096];
+    for (;;) {
+      const ssize_t n = ::read(fd, buf, sizeof buf);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) return {};  // ESRCH: the process ended after open(); any other error: nothing to report
+      if (n == 0) return text;
+      text.append(buf, static_cast<std::size_t>(n));
+    }
+  } catch (...) {  // std::bad_alloc: nothing read
+    return {};
+  }
+}
+
+std::string read_proc_file(const std::string& path) noexcept {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return {};
+  std::string text = read_open_file(fd);
+  ::close(fd);
+  return text;
 }
 
 std::uint64_t children_ticks(pid_t parent, pid_t except) {
@@ -87,7 +108,7 @@ std::uint64_t children_ticks(pid_t parent, pid_t except) {
     pid_t pid = 0;
     const auto [end, err] = std::from_chars(name.data(), name.data() + name.size(), pid);
     if (err != std::errc() || end != name.data() + name.size() || pid == except) continue;
-    const std::string stat = read_file(("/proc/" + name + "/stat").c_str());
+    const std::string stat = read_proc_file("/proc/" + name + "/stat");
     // "pid (comm) state ppid …": the parent is the second field after the last ')'.
     const auto close = stat.rfind(')');
     if (close == std::string::npos) continue;

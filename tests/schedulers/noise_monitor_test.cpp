@@ -4,10 +4,14 @@
 
 #include <catch2/catch.hpp>
 
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace nz = frontsteal::noise;
@@ -155,4 +159,32 @@ TEST_CASE("our own child processes' CPU time is ours, not another process's", "[
   // Excluding a pid leaves it out (the co-runner is counted as known_ticks instead).
   CHECK(nz::children_ticks(::getpid(), child.pid) + static_cast<std::uint64_t>(per_s * 3 / 10) - 1 <=
         nz::children_ticks(::getpid(), 0));
+}
+
+TEST_CASE("a /proc file whose process ends between open and read: nothing read, nothing thrown", "[noise]") {
+  // The race children_ticks() meets on a busy machine, forced: open the child's stat file, let the child end
+  // and be reaped, then read. read() fails with ESRCH.
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    ::pause();
+    ::_exit(0);
+  }
+  const std::string path = "/proc/" + std::to_string(child) + "/stat";
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  REQUIRE(fd >= 0);
+  std::ifstream old_reader(path);  // how the file used to be read (the defect this test keeps out)
+  REQUIRE(old_reader.is_open());
+  ::kill(child, SIGKILL);
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  // The old reader: std::ifstream's buffer throws from underflow (libstdc++) and the istreambuf_iterator lets
+  // it through — the crash of the fresh-clone run (exit 134).
+  CHECK_THROWS(std::string(std::istreambuf_iterator<char>(old_reader), std::istreambuf_iterator<char>()));
+  std::string text = "unchanged";
+  CHECK_NOTHROW(text = nz::read_open_file(fd));
+  CHECK(text.empty());
+  ::close(fd);
+  CHECK(nz::read_proc_file(path).empty());      // the process is gone: nothing, no exception
+  CHECK_FALSE(nz::read_proc_file("/proc/self/stat").empty());
 }
