@@ -140,15 +140,17 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
   const noise::ProcSample measure_start = noise::sample_now();
   for (int r = 0; r < o.repeats; ++r) {
     {
-      const double probe_before = noise::probe_ns_per_mstep();
+      const double probe_before = noise::probe_ns_per_million_steps();
       const noise::PassMeter meter;
       const auto t0 = Clock::now();
       for (int f = 0; f < wl.frames(); ++f) {
         for (ItemId id = 0; id < n; ++id) wl.tessellate(f, id, 0);
       }
-      serial_path.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-      serial_passes.push_back(meter.stop());
-      serial_probe.push_back((probe_before + noise::probe_ns_per_mstep()) / 2);
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      serial_passes.push_back(meter.stop());  // before the push_backs below can allocate
+      serial_path.push_back(ms);
+      // The smaller of the two: a time slice lost during one probe inflates it, not the core's speed.
+      serial_probe.push_back(std::min(probe_before, noise::probe_ns_per_million_steps()));
     }
     for (Cell& c : cells) {
       double total = 0;

@@ -33,26 +33,28 @@ double pearson(const std::vector<double>& x, const std::vector<double>& y) {
 
 }  // namespace
 
-double probe_ns_per_mstep(std::uint64_t steps) {
+double probe_ns_per_million_steps(std::uint64_t steps) {
   if (steps == 0) steps = 1;
-  // Four independent chains, so that the multiplier and the ALUs are kept busy (throughput-bound): a busy SMT
-  // sibling on the host's core competes for exactly those, and a lone latency-bound chain would barely notice.
-  std::uint64_t a = 0x9e3779b97f4a7c15ull, b = 0xbf58476d1ce4e5b9ull, c = 0x94d049bb133111ebull, d = 0x2545f4914f6cdd1dull;
+  // Eight independent chains. One step of a chain is a multiply-add and a shift-xor, ~6 cycles of latency with
+  // one multiply in it; eight chains put ~8 multiplies in those cycles, so the core's multiplier is the limit
+  // (throughput-bound): a busy SMT sibling competing for it slows the probe as a lower clock does, where a lone
+  // latency-bound chain would barely notice.
+  std::uint64_t x[8] = {0x9e3779b97f4a7c15ull, 0xbf58476d1ce4e5b9ull, 0x94d049bb133111ebull, 0x2545f4914f6cdd1dull,
+                        0xd6e8feb86659fd93ull, 0xa0761d6478bd642full, 0xe7037ed1a0b428dbull, 0x8ebc6af09c88c6e3ull};
   const auto t0 = std::chrono::steady_clock::now();
+  // The chains' values "change" here and are "used" before t1, so the compiler can neither start the loop
+  // before t0 nor finish it after t1, nor drop it (the "memory" clobbers keep the order with the clock calls).
+  asm volatile("" : "+r"(x[0]), "+r"(x[1]), "+r"(x[2]), "+r"(x[3]), "+r"(x[4]), "+r"(x[5]), "+r"(x[6]), "+r"(x[7])
+               : : "memory");
   for (std::uint64_t i = 0; i < steps; ++i) {
-    a = a * 6364136223846793005ull + 1442695040888963407ull;
-    b = b * 6364136223846793005ull + 1442695040888963407ull;
-    c = c * 6364136223846793005ull + 1442695040888963407ull;
-    d = d * 6364136223846793005ull + 1442695040888963407ull;
-    a ^= a >> 29;
-    b ^= b >> 29;
-    c ^= c >> 29;
-    d ^= d >> 29;
+    for (std::uint64_t& v : x) {
+      v = v * 6364136223846793005ull + 1442695040888963407ull;
+      v ^= v >> 29;
+    }
   }
+  asm volatile("" : : "r"(x[0]), "r"(x[1]), "r"(x[2]), "r"(x[3]), "r"(x[4]), "r"(x[5]), "r"(x[6]), "r"(x[7])
+               : "memory");
   const auto t1 = std::chrono::steady_clock::now();
-  // Keep the chains: without a use of their values the compiler may drop the loop.
-  const std::uint64_t all = a ^ b ^ c ^ d;
-  asm volatile("" : : "r"(all) : "memory");
   return std::chrono::duration<double, std::nano>(t1 - t0).count() * 1e6 / static_cast<double>(steps);
 }
 
@@ -67,48 +69,48 @@ SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std:
   d.probe_spread = spread_of(probe);
   d.correlation = probe.size() >= 3 ? pearson(serial_ms, probe) : 0.0;
   d.cpu_varied = d.probe_spread > threshold;
-  d.user_mode_only = passes.size() == serial_ms.size() && user_mode_only(passes);
+  d.probe_follows_passes =
+      d.cpu_varied && d.probe_spread >= 0.5 * d.serial_spread && probe.size() >= 3 && d.correlation >= 0.7;
+  d.same_work_on_cpu = passes.size() == serial_ms.size() && same_work_on_cpu(passes);
   char r[32];
   std::snprintf(r, sizeof r, "%.2f", d.correlation);
-  const std::string probe_says = "a fixed arithmetic loop timed beside each serial pass spread " + pct(d.probe_spread) +
-                                 " (correlation with the passes r = " + r + ")";
+  const std::string probe_says = "a fixed arithmetic loop timed at the edges of each serial pass spread " +
+                                 pct(d.probe_spread) + " (correlation with the passes r = " + r + ")";
   std::string work_says;  // what the passes' own threads did, when measured
   if (passes.size() == serial_ms.size() && !passes.empty()) {
     long faults = 0, blocked = 0, preempted = 0;
-    double system_ms = 0;
+    double system_ms = 0, off_cpu = 0;
     for (const PassUsage& p : passes) {
       faults += p.faults;
       blocked += p.voluntary_switches;
       preempted = std::max(preempted, p.involuntary_switches);
       system_ms += p.system_ms;
+      if (p.wall_ms > 0) off_cpu = std::max(off_cpu, 1 - (p.user_ms + p.system_ms) / p.wall_ms);
     }
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "%ld page faults, %.0f ms system time, %ld blocking waits in all passes; at most %ld "
-                  "involuntary switches in one", faults, system_ms, blocked, preempted);
+    char buf[240];
+    std::snprintf(buf, sizeof buf, "%ld page faults, %.0f ms system time, %ld blocking waits in all passes; at most "
+                  "%ld involuntary switches and %.1f %% of the wall time off the CPU in one", faults, system_ms, blocked,
+                  preempted, 100 * std::max(0.0, off_cpu));
     work_says = buf;
   }
   if (d.serial_spread <= threshold) {
     d.line = "CPU speed probe: " + probe_says;
-  } else if (d.cpu_varied && d.probe_spread >= 0.5 * d.serial_spread) {
-    d.machine = true;
-    d.line = "the CPU itself changed speed between repeats: " + probe_says +
-             ", most of the serial loop's " + pct(d.serial_spread) +
-             "; /proc cannot see this (a lower host clock or a busy SMT sibling on the host): the machine, not the program";
-  } else if (d.user_mode_only) {
-    d.machine = true;
-    d.line = "every serial pass did the same work in user mode (" + work_says + ") and still spread " +
-             pct(d.serial_spread) + ": the same instructions ran slower, so the hardware or its state, not the "
-             "program's work — " + probe_says + "; the rest is what an arithmetic loop does not feel (caches or "
-             "memory shared with other tenants, or caches left cold by the run before)";
+  } else if (d.probe_follows_passes) {
+    d.line = "the CPU itself changed speed between repeats: " + probe_says + ", most of the serial loop's " +
+             pct(d.serial_spread) + "; /proc cannot see this (a lower host clock or a busy SMT sibling on the host)";
+  } else if (d.same_work_on_cpu) {
+    d.line = "every serial pass did the same work on its CPU (" + work_says + ") and still spread " +
+             pct(d.serial_spread) + ": the same instructions took longer — the hardware's speed or state (a lower "
+             "clock, a busy SMT sibling, caches or memory shared with other tenants, or caches left cold by the run "
+             "before), not different work by the program; " + probe_says;
   } else if (d.cpu_varied) {
-    d.line = "the CPU's speed changed between repeats, but less than the serial loop's time: " + probe_says +
-             " against the passes' " + pct(d.serial_spread) +
-             "; the rest is memory, caches, the program, or a slowdown the arithmetic probe does not feel" +
+    d.line = "the CPU's speed changed between repeats, but it does not explain the serial loop's " +
+             pct(d.serial_spread) + ": " + probe_says + "; the rest is memory, caches, the program, or time off the CPU" +
              (work_says.empty() ? "" : " (" + work_says + ")");
   } else {
-    d.line = "the CPU's speed did not change between repeats (" + probe_says +
-             "): the serial loop's own time varied — memory, caches or the program, not the core's clock" +
-             (work_says.empty() ? "" : " (" + work_says + ")");
+    d.line = "the CPU's speed did not change at the edges of the passes (" + probe_says +
+             "): the serial loop's own time varied — memory, caches, the program or time off the CPU, not the core's "
+             "clock" + (work_says.empty() ? "" : " (" + work_says + ")");
   }
   return d;
 }

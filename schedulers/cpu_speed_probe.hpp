@@ -5,17 +5,22 @@
 // Why: on every machine lent to this work (two 2-vCPU VMs, a 16-vCPU VM) the serial loop's repeats spread by
 // 14–76 % with nothing else running — /proc saw no other process and no steal, and the thread was on its CPU
 // the whole time. /proc cannot see what slows a vCPU that keeps running: a lower host clock, or a busy SMT
-// sibling on the host's physical core. A probe can: its work is fixed — four independent chains of integer
-// multiply-and-xorshift steps (the same instructions every call, no memory traffic, no branches that depend on
-// data), enough of them to keep the multiplier busy, so a busy SMT sibling competing for it slows the probe as
-// a lower clock does — and its wall time per step moves only when the core retires those instructions more
-// slowly, or when the thread loses the core (then /proc's counters say so too).
+// sibling on the host's physical core. A probe can: its work is fixed — eight independent chains of integer
+// multiply-add and shift-xor steps (the same instructions every call, no memory traffic, no branches that
+// depend on data), enough of them to keep the multiplier busy, so a busy SMT sibling competing for it slows the
+// probe as a lower clock does — and its wall time per step moves only when the core retires those instructions
+// more slowly, or when the thread loses the core. It is taken twice per pass, at its start and its end, and the
+// smaller of the two counts (a lost time slice inflates one, not the speed of the core); it sees the pass's
+// edges, not its middle.
 //
-// What it cannot see: contention for memory bandwidth or the last-level cache (the probe touches neither). A
-// serial spread with a flat probe therefore means "memory, caches or the program", not "certainly ours".
+// What it cannot see: contention for memory bandwidth or the last-level cache (the probe touches neither). For
+// that, pass_usage.hpp: when every pass did the same work on its CPU (no page fault, no system time, never
+// blocked, on the CPU for its whole wall time), the same instructions took longer — the hardware's speed or
+// state, whatever the probe says. The diagnosis never calls anything "the program's" or "the machine's" beyond
+// what those two measurements show.
 //
-// The decision (diagnose_spread) is pure, so tests drive it with synthetic repeats; probe_ns_per_mstep() is
-// the only part that measures, and its checks are a chain the compiler dropped (it would report ~0 ns) and a
+// The decision (diagnose_spread) is pure, so tests drive it with synthetic repeats; probe_ns_per_million_steps()
+// is the only part that measures, and its checks are a chain the compiler dropped (it would report ~0 ns) and a
 // probe stopped by SIGSTOP that must report the lost time (tests/schedulers/cpu_speed_probe_test.cpp).
 #pragma once
 
@@ -27,21 +32,20 @@
 
 namespace frontsteal::noise {
 
-// Steps of one probe: about 1–2 ms on a 2020s core (a step is four multiplies and eight shift/xor operations).
+// Steps of one probe: 2–3 ms on a 2020s core (a step is eight multiply-adds and eight shift-xors).
 inline constexpr std::uint64_t kProbeSteps = 1'000'000;
 
-// Runs `steps` steps of the chain on the calling thread; wall-clock ns per million steps.
-double probe_ns_per_mstep(std::uint64_t steps = kProbeSteps);
+// Runs `steps` steps of the chains on the calling thread; wall-clock ns per million steps.
+double probe_ns_per_million_steps(std::uint64_t steps = kProbeSteps);
 
 struct SpreadDiagnosis {
   double serial_spread = 0;  // max / min − 1 of the serial passes
   double probe_spread = 0;   // max / min − 1 of the probe, one value per pass
   double correlation = 0;    // Pearson r between a pass's time and its probe (0 with fewer than 3 passes)
-  bool cpu_varied = false;   // the probe spread by more than the threshold (when it spread by at least half the
-                             // serial loop's spread, the report calls it the machine's doing)
-  bool user_mode_only = false;  // every pass ran in user mode only (pass_usage.hpp): the same work each time
-  bool machine = false;      // the report blames the hardware, not the program's work (the probe moved as much as
-                             // the passes, or the same user-mode work ran slower)
+  bool cpu_varied = false;   // the probe spread by more than the threshold
+  bool probe_follows_passes = false;  // ... by at least half the serial spread, r >= 0.7 over >= 3 passes: the
+                                      // core's speed explains the spread
+  bool same_work_on_cpu = false;      // every pass did the same work on its CPU (pass_usage.hpp)
   std::string line;          // one sentence for the report
 };
 

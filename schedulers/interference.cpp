@@ -1,6 +1,6 @@
 // interference.cpp — the co-runner child process and its guard (interference.hpp).
 #include "schedulers/interference.hpp"
-#include "schedulers/noise_monitor.hpp"
+#include "schedulers/proc_file.hpp"
 
 #include <sched.h>
 #include <signal.h>

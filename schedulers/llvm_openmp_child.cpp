@@ -1,7 +1,7 @@
 // llvm_openmp_child.cpp — the parent's side of openmp-static-steal (llvm_openmp_child.hpp): spawn, protocol,
 // audit, reaping.
 #include "schedulers/llvm_openmp_child.hpp"
-#include "schedulers/noise_monitor.hpp"
+#include "schedulers/proc_file.hpp"
 
 #include <fcntl.h>
 #include <poll.h>

@@ -48,15 +48,6 @@ struct ProcSample {
   double wall_s = 0;               // steady clock when sampled
 };
 
-// The whole text of a /proc file, or "" when it cannot be read; never throws. A process can end between open()
-// and read(), and read() then fails with ESRCH; std::ifstream's buffer turns that into an exception (libstdc++'s
-// basic_filebuf::underflow) that an istreambuf_iterator lets through. children_ticks() reads the stat file of
-// every process on the machine, so among a busy machine's short-lived processes it met exactly that: a
-// fresh-clone test run (2026-11-26, ctest -j2) ended with "basic_filebuf::underflow error reading the file: No
-// such process", exit 134. read_open_file(fd) is the reading half (the test opens, lets the process go, then reads).
-std::string read_proc_file(const std::string& path) noexcept;
-std::string read_open_file(int fd) noexcept;
-
 // Parses the text of /proc/stat, /proc/self/stat and /proc/loadavg; ok = false if any is malformed.
 ProcSample parse_sample(std::string_view proc_stat, std::string_view self_stat, std::string_view loadavg,
                         double wall_s);

@@ -24,8 +24,11 @@ PassUsage PassMeter::stop() const {
   return u;
 }
 
-std::map<std::string, std::vector<double>> columns(const std::vector<PassUsage>& passes) {
+std::map<std::string, std::vector<double>> pass_usage_columns(const std::vector<PassUsage>& passes) {
   std::map<std::string, std::vector<double>> c;
+  for (const char* key : {"wall_ms", "user_ms", "system_ms", "faults", "voluntary_switches", "involuntary_switches"}) {
+    c[key];
+  }
   for (const PassUsage& p : passes) {
     c["wall_ms"].push_back(p.wall_ms);
     c["user_ms"].push_back(p.user_ms);
@@ -37,10 +40,11 @@ std::map<std::string, std::vector<double>> columns(const std::vector<PassUsage>&
   return c;
 }
 
-bool user_mode_only(const std::vector<PassUsage>& passes) {
+bool same_work_on_cpu(const std::vector<PassUsage>& passes) {
   if (passes.empty()) return false;
   for (const PassUsage& p : passes) {
     if (p.faults != 0 || p.voluntary_switches != 0 || p.system_ms > 0.01 * p.wall_ms) return false;
+    if (p.user_ms + p.system_ms < 0.98 * p.wall_ms) return false;
   }
   return true;
 }

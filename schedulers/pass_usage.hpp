@@ -37,11 +37,13 @@ class PassMeter {
   std::chrono::steady_clock::time_point t0_;
 };
 
-// True when every pass ran the same kind of work: no page fault, never blocked, system time under 1 % of its
-// wall time (the tick accounting of an idle kernel). False for an empty list.
-bool user_mode_only(const std::vector<PassUsage>& passes);
+// True when every pass did the same work on its CPU: no page fault, never blocked, system time under 1 % of
+// its wall time (the tick accounting of an idle kernel), and on the CPU (user + system) for at least 98 % of it
+// (not preempted for long). False for an empty list.
+bool same_work_on_cpu(const std::vector<PassUsage>& passes);
 
-// The passes as columns for the results files: {"wall_ms": [...], "user_ms": [...], ...}, one value per pass.
-std::map<std::string, std::vector<double>> columns(const std::vector<PassUsage>& passes);
+// The passes as columns for the results files: {"wall_ms": [...], "user_ms": [...], ...}, one value per pass
+// (every key present, with empty arrays when there are no passes).
+std::map<std::string, std::vector<double>> pass_usage_columns(const std::vector<PassUsage>& passes);
 
 }  // namespace frontsteal::noise

@@ -9,7 +9,6 @@
 
 #include <cerrno>
 #include <chrono>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -17,6 +16,7 @@
 #include <catch2/catch.hpp>
 
 #include "schedulers/llvm_openmp_child.hpp"
+#include "schedulers/proc_file.hpp"
 #include "tessellate/camera_path.hpp"
 #include "tessellate/scene_generator.hpp"
 #include "tessellate/surface_tessellator.hpp"
@@ -63,8 +63,7 @@ bool gone(pid_t pid) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   while (std::chrono::steady_clock::now() < deadline) {
     if (::kill(pid, 0) != 0 && errno == ESRCH) return true;
-    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-    std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+    const std::string text = frontsteal::noise::read_proc_file("/proc/" + std::to_string(pid) + "/stat");
     const auto close = text.rfind(')');
     if (close != std::string::npos && close + 2 < text.size() && text[close + 2] == 'Z') return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
