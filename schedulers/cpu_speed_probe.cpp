@@ -13,12 +13,6 @@ namespace frontsteal::noise {
 
 namespace {
 
-std::string pct(double share) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f %%", 100 * share);
-  return buf;
-}
-
 double pearson(const std::vector<double>& x, const std::vector<double>& y) {
   const auto n = static_cast<double>(x.size());
   const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n, my = std::accumulate(y.begin(), y.end(), 0.0) / n;
@@ -75,7 +69,7 @@ SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std:
   char r[32];
   std::snprintf(r, sizeof r, "%.2f", d.correlation);
   const std::string probe_says = "a fixed arithmetic loop timed at the edges of each serial pass spread " +
-                                 pct(d.probe_spread) + " (correlation with the passes r = " + r + ")";
+                                 percent(d.probe_spread) + " (correlation with the passes r = " + r + ")";
   std::string work_says;  // what the passes' own threads did, when measured
   if (passes.size() == serial_ms.size() && !passes.empty()) {
     long faults = 0, blocked = 0, preempted = 0;
@@ -97,15 +91,15 @@ SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std:
     d.line = "CPU speed probe: " + probe_says;
   } else if (d.probe_follows_passes) {
     d.line = "the CPU itself changed speed between repeats: " + probe_says + ", most of the serial loop's " +
-             pct(d.serial_spread) + "; /proc cannot see this (a lower host clock or a busy SMT sibling on the host)";
+             percent(d.serial_spread) + "; /proc cannot see this (a lower host clock or a busy SMT sibling on the host)";
   } else if (d.same_work_on_cpu) {
     d.line = "every serial pass did the same work on its CPU (" + work_says + ") and still spread " +
-             pct(d.serial_spread) + ": the same instructions took longer — the hardware's speed or state (a lower "
+             percent(d.serial_spread) + ": the same instructions took longer — the hardware's speed or state (a lower "
              "clock, a busy SMT sibling, caches or memory shared with other tenants, or caches left cold by the run "
              "before), not different work by the program; " + probe_says;
   } else if (d.cpu_varied) {
     d.line = "the CPU's speed changed between repeats, but it does not explain the serial loop's " +
-             pct(d.serial_spread) + ": " + probe_says + "; the rest is memory, caches, the program, or time off the CPU" +
+             percent(d.serial_spread) + ": " + probe_says + "; the rest is memory, caches, the program, or time off the CPU" +
              (work_says.empty() ? "" : " (" + work_says + ")");
   } else {
     d.line = "the CPU's speed did not change at the edges of the passes (" + probe_says +

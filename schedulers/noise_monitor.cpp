@@ -15,16 +15,12 @@
 #include <sstream>
 
 namespace frontsteal::noise {
-namespace {
-
 
 std::string percent(double share) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * share);
   return buf;
 }
-
-}  // namespace
 
 ProcSample parse_sample(std::string_view proc_stat, std::string_view self_stat, std::string_view loadavg,
                         double wall_s) {

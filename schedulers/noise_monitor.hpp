@@ -88,4 +88,7 @@ Assessment assess(const Usage& u, const Thresholds& t);
 // max / min − 1 of positive values (0 for fewer than two).
 double spread_of(const std::vector<double>& values);
 
+// A share as the reports print it: 0.123 -> "12.3 %".
+std::string percent(double share);
+
 }  // namespace frontsteal::noise
