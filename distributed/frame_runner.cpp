@@ -16,7 +16,7 @@ namespace frontsteal::mpi {
 FrameRunner::FrameRunner(const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win,
                          double owner_progress_us)
     : o_(o), wl_(wl), rank_(rank), ranks_(ranks), win_(win), active_(win),
-      progress_(MPI_COMM_WORLD, owner_progress_us) {
+      progress_(MPI_COMM_WORLD, owner_progress_us), request_poll_(std::max(0.0, owner_progress_us)) {
   for (int v = 0; v < ranks; ++v) {
     if (v != rank) victims_.push_back(v);
   }
@@ -132,7 +132,12 @@ void FrameRunner::central_frame(Frame& fr) {
     record_owner_op(Clock::now() - t0);
     if (s >= wl_.n) break;
     const std::uint64_t e = std::min<std::uint64_t>(s + grain, wl_.n);
-    for (std::uint64_t id = s; id < e; ++id) execute(fr, static_cast<ItemId>(id));
+    for (std::uint64_t id = s; id < e; ++id) {
+      execute(fr, static_cast<ItemId>(id));
+      // Rank 0 is the counter's home: where the transport needs the target's progress (owner_progress.hpp),
+      // every other rank's fetch-and-op waits for rank 0's next call into MPI.
+      if (rank_ == 0 && progress_.maybe_call(Clock::now())) stats_.progress_calls += 1;
+    }
   }
 }
 

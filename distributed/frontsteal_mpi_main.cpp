@@ -14,6 +14,7 @@
 #include "distributed/mpi_report.hpp"
 #include "distributed/rank_watchdog.hpp"
 #include "distributed/scheduler_run.hpp"
+#include "distributed/window_self_test.hpp"
 
 namespace fm = frontsteal::mpi;
 
@@ -47,6 +48,27 @@ int run_all(const fm::Options& o, fm::Workload& wl, int rank, int ranks, fm::Rma
   return status;
 }
 
+// 1 when the window cannot carry the protocols: not the unified memory model (G2 of rma_window.hpp), or its
+// one-sided operations return wrong results on this transport (window_self_test.hpp). Collective.
+int refuse_unusable_window(fm::RmaWindow& win, int rank) {
+  if (!win.unified()) {
+    if (rank == 0) std::fprintf(stderr, "%s: the window's memory model is not MPI_WIN_UNIFIED: the owner's local "
+                                "loads and stores would not be coherent with thieves' RMA; refusing to run\n",
+                                fm::kProgram.data());
+    return 1;
+  }
+  const fm::WindowSelfTest check = fm::run_window_self_test(win, MPI_COMM_WORLD);
+  if (check.ok) return 0;
+  if (!check.first_failure.empty()) {
+    std::fprintf(stderr, "%s: rank %d: WINDOW SELF-TEST FAILED: %s\n", fm::kProgram.data(), rank,
+                 check.first_failure.c_str());
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (rank == 0) std::fprintf(stderr, "%s: the window's one-sided operations return wrong results on this "
+                              "transport (window_self_test.hpp); refusing to run\n", fm::kProgram.data());
+  return 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -65,24 +87,22 @@ int main(int argc, char** argv) {
     fm::build_workload(o, rank, wl);
     fm::note_progress();
     fm::RmaWindow win(MPI_COMM_WORLD, std::max<std::uint32_t>(wl.n, 1));
-    if (!win.unified()) {
-      if (rank == 0) std::fprintf(stderr, "%s: the window's memory model is not MPI_WIN_UNIFIED: the owner's local "
-                                  "loads and stores would not be coherent with thieves' RMA; refusing to run\n",
-                                  fm::kProgram.data());
-      MPI_Finalize();
-      return 1;
-    }
-    const fm::ProgressChoice progress = fm::resolve_owner_progress(o.owner_progress, MPI_COMM_WORLD);
-    if (o.calibrate) {
-      status = fm::calibrate(o, rank, ranks, win, progress);
-    } else {
-      if (rank == 0 && !o.quiet) {
-        std::fprintf(stderr, "%s: %d ranks, scene %s (%s, %u items), %d frames; prepared in %.2f s; %s\n",
-                     fm::kProgram.data(), ranks, o.scene.c_str(), wl.kind.c_str(), wl.n, o.frames,
-                     std::chrono::duration<double>(std::chrono::steady_clock::now() - load0).count(),
-                     progress.describe().c_str());
+    win.plant_read_before_flush(o.defect == "read-before-flush");
+    // A refusal ends this scope normally: the window is freed before MPI_Finalize on every path.
+    status = refuse_unusable_window(win, rank);
+    if (status == 0) {
+      const fm::ProgressChoice progress = fm::resolve_owner_progress(o.owner_progress, MPI_COMM_WORLD);
+      if (o.calibrate) {
+        status = fm::calibrate(o, rank, ranks, win, progress);
+      } else {
+        if (rank == 0 && !o.quiet) {
+          std::fprintf(stderr, "%s: %d ranks, scene %s (%s, %u items), %d frames; prepared in %.2f s; %s\n",
+                       fm::kProgram.data(), ranks, o.scene.c_str(), wl.kind.c_str(), wl.n, o.frames,
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - load0).count(),
+                       progress.describe().c_str());
+        }
+        status = run_all(o, wl, rank, ranks, win, progress);
       }
-      status = run_all(o, wl, rank, ranks, win, progress);
     }
     MPI_Barrier(MPI_COMM_WORLD);
   } catch (const std::exception& e) {

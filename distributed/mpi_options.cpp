@@ -113,8 +113,9 @@ Options parse_options(int argc, char** argv) {
   cli.option("--die", die, "R:F: rank R exits abruptly (status 3) after its first item of frame F (fault test)")
       ->check(integers_validator({1 << 20, 100000}, "RANK:FRAME"));
   cli.option("--plant-defect", o.defect, "negative controls: none | skip-reread (rma thief skips T4/T5) | "
-             "request-keeps-share (request owner sends a share and keeps it)")
-      ->check(CLI::IsMember({"none", "skip-reread", "request-keeps-share"}));
+             "request-keeps-share (request owner sends a share and keeps it) | read-before-flush (one-sided results "
+             "read before MPI_Win_flush: the start-up window self-test must fail over osc/pt2pt)")
+      ->check(CLI::IsMember({"none", "skip-reread", "request-keeps-share", "read-before-flush"}));
   cli.flag("--force-overlap", o.force_overlap, "rma thieves wait, before T3, until the victim has claimed into the planned share");
   cli.option("--owner-fence", o.owner_fence, "the rma owner's F1: cpu (a seq_cst fence, no MPI call on the owner path) | "
              "win-sync (MPI_Win_sync + the fence: the standard's barrier, but a progress call per claim)")

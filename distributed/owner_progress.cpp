@@ -18,7 +18,7 @@ ProgressChoice resolve_owner_progress(const std::string& option, MPI_Comm comm) 
   if (const char* osc = std::getenv("OMPI_MCA_osc")) c.osc_requested = osc;
   const bool sm_possible = c.one_node && (c.osc_requested.empty() || c.osc_requested.find("sm") != std::string::npos);
   if (option == "auto") {
-    c.every_us = sm_possible ? -1 : 0;
+    c.every_us = sm_possible ? -1 : kAutoProgressEveryUs;
   } else if (option == "off") {
     c.every_us = -1;
   } else {

@@ -33,21 +33,41 @@
 namespace frontsteal::mpi {
 
 inline constexpr int kTagProgressProbe = 183;  // never sent: the probe only drives progress
+// auto's interval where a transport needs the target's progress (see WHAT IT COSTS above).
+inline constexpr double kAutoProgressEveryUs = 50;
+
+// At most once every `every_us` microseconds (0: every time; < 0: never): the time gate of the rma owner's
+// progress call and of the request owner's poll for steal requests.
+class PollGate {
+ public:
+  using Clock = std::chrono::steady_clock;
+  explicit PollGate(double every_us)
+      : every_(std::chrono::duration_cast<Clock::duration>(
+            std::chrono::duration<double, std::micro>(every_us < 0 ? 0 : every_us))),
+        enabled_(every_us >= 0) {}
+  bool due(Clock::time_point now) {
+    if (!enabled_ || now < next_) return false;
+    next_ = now + every_;
+    return true;
+  }
+  bool enabled() const noexcept { return enabled_; }
+
+ private:
+  Clock::duration every_;
+  bool enabled_;
+  Clock::time_point next_{};
+};
 
 class OwnerProgress {
  public:
-  using Clock = std::chrono::steady_clock;
+  using Clock = PollGate::Clock;
   // every_us < 0: never; 0: every item; > 0: at most every every_us microseconds.
-  OwnerProgress(MPI_Comm comm, double every_us)
-      : comm_(comm), every_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::micro>(
-                         every_us < 0 ? 0 : every_us))),
-        enabled_(every_us >= 0) {}
+  OwnerProgress(MPI_Comm comm, double every_us) : comm_(comm), gate_(every_us) {}
 
   // Between two items, with the time already read; returns whether it called into MPI.
   bool maybe_call(Clock::time_point now) {
-    if (!enabled_ || now < next_) return false;
+    if (!gate_.due(now)) return false;
     call();
-    next_ = now + every_;
     return true;
   }
   void call() {
@@ -56,13 +76,11 @@ class OwnerProgress {
     ++calls_;
   }
   std::uint64_t calls() const noexcept { return calls_; }
-  bool enabled() const noexcept { return enabled_; }
+  bool enabled() const noexcept { return gate_.enabled(); }
 
  private:
   MPI_Comm comm_;
-  Clock::duration every_;
-  bool enabled_;
-  Clock::time_point next_{};
+  PollGate gate_;
   std::uint64_t calls_ = 0;
 };
 

@@ -67,7 +67,9 @@ void FrameRunner::request_frame(Frame& fr, RangeList list, RangeList& log) {
 void FrameRunner::drain_request(Frame& fr, RangeList list, RangeList& log) {
   std::size_t i = 0;
   while (true) {
-    serve_requests(&list, &i);
+    const auto t0 = Clock::now();
+    if (request_poll_.due(t0)) serve_requests(&list, &i);
+    record_owner_op(Clock::now() - t0);  // per item: the poll and any replies when due, else the gate's check
     while (i < list.size() && list[i].empty()) ++i;
     if (i >= list.size()) return;
     const ItemId id = list[i].begin++;
@@ -112,9 +114,7 @@ void FrameRunner::serve_requests(RangeList* list, std::size_t* index) {
   while (true) {
     int flag = 0;
     MPI_Status st;
-    const auto t0 = Clock::now();
     check_mpi(MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &flag, &st), "MPI_Iprobe");
-    if (list != nullptr) record_owner_op(Clock::now() - t0);
     if (!flag) return;
     std::int32_t frame = 0;
     check_mpi(MPI_Recv(&frame, 1, MPI_INT32_T, st.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD, MPI_STATUS_IGNORE),

@@ -190,19 +190,31 @@ class RmaWindow {
   }
   void flush(int rank) { check_mpi(MPI_Win_flush(rank, win_), "MPI_Win_flush"); }
 
+  // Test hook (--defect read-before-flush; never in measured runs): results are read before MPI_Win_flush,
+  // as the old code did. Invisible where MPI_Get copies at once (osc/sm); caught by the self-test elsewhere.
+  void plant_read_before_flush(bool on) noexcept { read_before_flush_ = on; }
+
  private:
   // G1: the operation is complete at origin and target before its value is used; counts its payload bytes.
+  // `result` is the operation's result buffer, taken by reference and read only AFTER the flush: until then
+  // MPI may not have written it. (Taking it by value read it before the flush — the bug of stops 22-25: on
+  // osc/sm, which copies inside MPI_Get, nothing showed; over osc/pt2pt (TCP), where data arrives at the
+  // flush, every Get, fetch-and-op and CAS returned 0, so thieves saw empty lists and never stole, the lock
+  // CAS always "succeeded", and the central counter handed out item 0 forever. window_self_test.hpp now
+  // checks every operation's result at start; plant_read_before_flush() is that bug, for its negative control.)
   template <class T>
-  T completed(int rank, std::size_t bytes, T value) {
+  T completed(int rank, std::size_t bytes, const T& result) {
+    const T before_flush = result;
     flush(rank);
     bytes_ += bytes;
-    return value;
+    return read_before_flush_ ? before_flush : result;
   }
 
   void* base_ = nullptr;
   MPI_Win win_ = MPI_WIN_NULL;
   std::uint32_t capacity_;
   bool unified_ = false;
+  bool read_before_flush_ = false;
   std::uint64_t bytes_ = 0;
 };
 
