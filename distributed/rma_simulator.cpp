@@ -24,6 +24,7 @@ struct Rank {
   std::uint32_t front = 0, end = 0;
   bool busy = false, locked = false;
   double busy_until = 0, server_free = 0, finish = 0, steal_start = 0;
+  double next_call = 0;  // the owner's next progress call / poll is due at or after this time (PollGate)
   Step step = Step::kOwner;
   std::vector<int> victims;
   std::size_t victim_index = 0, next_request = 0;
@@ -82,7 +83,14 @@ class Model {
     Rank& v = at(target);
     const double arrive = t + latency / 2;
     double start = arrive;
-    if (lat_.needs_target_progress && v.busy && v.busy_until > arrive) start = v.busy_until;
+    // Served at the busy target's first progress call after arrival: its next item boundary once the gate
+    // is due (approximated by max(boundary, gate): optimistic by less than one item).
+    if (lat_.needs_target_progress && v.busy && std::max(v.busy_until, v.next_call) > arrive) {
+      start = std::max(v.busy_until, v.next_call);
+      // central: rank 0, the counter's home, calls into MPI at most every progress_every inside its chunks
+      // (frame_runner.cpp); modelled as the worst case, one whole interval after arrival.
+      if (s_ == Scheduler::kCentral && target == 0) start = std::min(v.busy_until, arrive + lat_.progress_every);
+    }
     if (atomic) {
       start = std::max(start, v.server_free);
       v.server_free = start + lat_.atomic_service;
@@ -117,7 +125,7 @@ class Model {
       k.front = 0;
       k.end = static_cast<std::uint32_t>(k.list.size());
       k.busy = k.locked = false;
-      k.busy_until = k.server_free = k.finish = 0;
+      k.busy_until = k.server_free = k.finish = k.next_call = 0;
       k.failed_rounds = 0;
       k.pending.clear();
       k.step = Step::kOwner;
@@ -151,7 +159,11 @@ class Model {
       end += cost(frame_, static_cast<ItemId>(id));
       k.executed.push_back(static_cast<ItemId>(id));
     }
-    k.busy = true;  // no MPI call inside a chunk: the home is served between chunks
+    // Rank 0 pays a progress call per interval of its chunk where the transport needs them (frame_runner.cpp).
+    if (r == 0 && lat_.needs_target_progress && lat_.progress_every > 0) {
+      end += lat_.progress_call * std::floor((end - c) / lat_.progress_every);
+    }
+    k.busy = true;
     k.busy_until = end;
     at_time(end, r);
   }
@@ -193,13 +205,17 @@ class Model {
     Rank& k = at(r);
     switch (k.step) {
       case Step::kOwner: {
-        if (s_ == Scheduler::kRequest && !k.pending.empty()) t = answer_pending(t, k, false);
+        // The gate (owner_progress.hpp's PollGate): across nodes the rma owner's progress call and the request
+        // owner's poll happen at most every progress_every; on one node rma makes none, request polls always.
+        const bool gated = lat_.needs_target_progress;
+        const bool due = !gated || t >= k.next_call;
+        if (gated && due) k.next_call = t + lat_.progress_every;
+        if (s_ == Scheduler::kRequest && due && !k.pending.empty()) t = answer_pending(t, k, false);
         if (k.front >= k.end) return become_idle(t, r);
         const ItemId id = k.list[k.front++];
         k.executed.push_back(id);
-        const double overhead = s_ == Scheduler::kRma
-                                    ? lat_.claim + (lat_.needs_target_progress ? lat_.progress_call : 0)
-                                    : lat_.poll;
+        const double overhead = s_ == Scheduler::kRma ? lat_.claim + (gated && due ? lat_.progress_call : 0)
+                                                      : (due ? lat_.poll : 0);
         k.busy = true;
         k.busy_until = t + overhead + cost(frame_, id);
         return at_time(k.busy_until, r);

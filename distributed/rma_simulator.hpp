@@ -6,13 +6,14 @@
 // THE MODEL (one event per item boundary and per one-sided operation, processed in time order):
 //   items       the synthetic skewed workload of frontsteal-mpi (synthetic_cost.hpp): light `light_ns`, the
 //               moving heavy fifth `skew` x; lists carry over between frames (§4.2.1) as in frontsteal-mpi.
-//   rma         the owner pays `claim` per item (+ `progress_call` when the transport needs target progress);
+//   rma         the owner pays `claim` per item (+ `progress_call`, at most every `progress_every`, when the
+//               transport needs target progress);
 //               a thief runs the protocol's operations in order — L1 fetch-op, L2 CAS, T1 get, T2 get, the
 //               entry count and the entries (two gets), A1 fetch-op on rank 0, T3 put, T4 get, T5 get, L3
 //               fetch-op — each a round trip of its calibrated latency. The victim's End drops when T3
 //               completes; items the victim claimed past mid before then stay with it (the T5 re-read).
-//   request     the owner pays `poll` per item; a request travels half a ping-pong, waits for the victim's next
-//               item boundary (an idle victim answers at once), the reply (second half of the list, and A1 on
+//   request     the owner pays `poll` per item (across nodes: at most every `progress_every`); a request
+//               travels half a ping-pong, waits for the victim's next poll (an idle victim answers at once), the reply (second half of the list, and A1 on
 //               rank 0 paid by the victim) travels the other half.
 //   central     a fetch-and-op on rank 0 per grain of N/(100P) items.
 //   static      round robin, no communication.
@@ -21,8 +22,9 @@
 //   contention  every atomic (fetch-op, CAS) on a rank's words occupies that rank for `atomic_service`
 //               (one at a time): the central counter and the active count queue up at rank 0.
 //   progress    with needs_target_progress (TCP without asynchronous progress) an operation aimed at a busy
-//               rank is served only at that rank's next item boundary (the owner's progress call,
-//               owner_progress.hpp); an idle rank is inside MPI calls and serves at once.
+//               rank is served only at that rank's next progress call (an item boundary at least
+//               `progress_every` after the previous call, owner_progress.hpp); an idle rank is inside MPI
+//               calls and serves at once.
 //   frame end   a barrier: 2 log2(P) one-way messages.
 // NOT MODELLED: network bandwidth and topology (every pair is the calibrated pair), the OS scheduler (one
 // rank per core), cache effects of stolen items, a rank's own contention between its thief and owner roles.
@@ -51,6 +53,7 @@ struct Latencies {
   double progress_call = 0;       // the rma owner's progress call (owner_progress.hpp)
   double atomic_service = 0;      // time one atomic holds its home rank (see contention above)
   bool needs_target_progress = false;
+  double progress_every = 50000;   // with needs_target_progress: the owner's call/poll interval (auto: 50 us)
 };
 
 // Reads frontsteal-mpi --calibrate --json output (contents "calibration"); throws naming the file and the

@@ -59,7 +59,8 @@ report::Json latencies_json(const Latencies& l) {
   return {{"source", l.source}, {"get_ns", l.get}, {"put_ns", l.put}, {"compare_and_swap_ns", l.cas},
           {"fetch_and_op_ns", l.fetch_op}, {"ping_pong_ns", l.ping_pong}, {"owner_claim_ns", l.claim},
           {"request_poll_ns", l.poll}, {"owner_progress_call_ns", l.progress_call},
-          {"atomic_service_ns", l.atomic_service}, {"needs_target_progress", l.needs_target_progress}};
+          {"atomic_service_ns", l.atomic_service}, {"needs_target_progress", l.needs_target_progress},
+          {"progress_every_ns", l.progress_every}};
 }
 
 }  // namespace frontsteal::mpi::sim

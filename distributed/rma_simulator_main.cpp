@@ -33,6 +33,10 @@ int main(int argc, char** argv) {
   cli.option("--work-ns", w.light_ns, "a light item's cost, ns")->check(CLI::Range(0.0, 1e9));
   cli.option("--skew", w.skew, "the moving heavy fifth costs K x")->check(CLI::Range(1u, 10000u));
   cli.option("--frames", w.frames, "frames (lists carry over)")->check(CLI::Range(1, 1000));
+  double progress_every_us = 50;
+  cli.option("--progress-every-us", progress_every_us, "over a transport that needs target progress: the owner's "
+             "progress call / request poll interval (frontsteal-mpi --owner-progress; its auto is 50)")
+      ->check(CLI::Range(0.0, 1e6));
   cli.option("--json", json, "also write the results as JSON");
   cli.option("--markdown", markdown, "also write the results as markdown");
   cli.option("--plant-defect", defect, "negative control: none | skip-reread (rma thieves keep [mid, end))")
@@ -48,7 +52,8 @@ int main(int argc, char** argv) {
     doc["latencies"] = report::Json::array();
     bool audit_ok = true;
     for (const std::string& path : calibrations) {
-      const sim::Latencies lat = sim::latencies_from_calibration(path);
+      sim::Latencies lat = sim::latencies_from_calibration(path);
+      lat.progress_every = progress_every_us * 1e3;
       doc["latencies"].push_back(sim::latencies_json(lat));
       const std::string label = lat.needs_target_progress ? "tcp" : "shm";
       for (sim::Scheduler s : {sim::Scheduler::kRma, sim::Scheduler::kRequest, sim::Scheduler::kCentral,
