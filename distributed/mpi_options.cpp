@@ -122,7 +122,8 @@ Options parse_options(int argc, char** argv) {
       ->check(CLI::IsMember({"cpu", "win-sync"}));
   cli.option("--owner-progress", o.owner_progress, "the busy rma owner calls MPI_Iprobe at most every US microseconds "
              "(0: every item) so one-sided operations aimed at it complete on transports without asynchronous "
-             "progress (TCP); auto: off when every rank shares one node's memory, else 0")
+             "progress (TCP); the request owner's poll and rank 0 in central chunks use the same interval; "
+             "auto: off under Open MPI with every rank on one node (osc/sm), else 50")
       ->check(owner_progress_validator());
   cli.flag("--require-steals", o.require_steals, "exit 1 unless rma and request each made at least one steal (tests: "
            "stealing was exercised)");

@@ -10,15 +10,19 @@
 // The standard allows this (MPI 3.1 §11.7.3: an RMA operation completes once the target calls into MPI).
 //
 // WHAT THIS DOES. The owner calls MPI_Iprobe (on a tag nobody sends) between items, at most every `every_us`
-// microseconds (0: after every item); MPI_Iprobe runs opal_progress, which polls btl/tcp's sockets (btl/tcp
-// registers as an event-library user per peer). Cost, measured by --calibrate ("owner progress call"): 98 ns
-// on osc/sm, 3.2 us over TCP; counted in the owner's per-item overhead and in progress_calls. auto = off when
-// the window's ranks share one node (MPI_Comm_split_type MPI_COMM_TYPE_SHARED covers every rank) and no
-// --mca osc other than sm is set, else every item.
-// WHAT IT DID NOT DO (measured, README "Two hosts"): over osc/pt2pt a thief's first operation on a busy victim
-// still completed only once the victim had run out of work, so stealing over TCP is not demonstrated; and
-// the central counter's MPI_Fetch_and_op never completed in any all-scheduler run over osc/pt2pt. The remedy is a transport with hardware or
-// asynchronous progress (osc/ucx on RDMA, MPICH with MPIR_CVAR_ASYNC_PROGRESS=1), not more calls here.
+// microseconds (0: after every item); MPI_Iprobe runs opal_progress, which polls btl/tcp's sockets. The
+// request owner's poll and rank 0 inside central-counter chunks use the same gate (PollGate). Cost, measured
+// by --calibrate ("owner progress call"): 98 ns on osc/sm, 3.2 us over TCP (5.3 us with mpi_yield_when_idle).
+// auto = off when the library is Open MPI, every rank shares one node and no --mca osc other than sm is set
+// (osc/sm); otherwise every kAutoProgressEveryUs.
+// WHY AN INTERVAL (measured, README "Two hosts"; 2 ranks over TCP, 1 us light items): a call after EVERY item
+// left a thief's operations, and request messages, unanswered until the victim ran dry (0 steals in 10
+// frames; the cause inside Open MPI was not pinned down), while every 10-200 us gave 25-34 steals, with a
+// mean steal latency growing with the interval (0.6 ms at 10 us, 2.3 ms at 50 us, 8.7 ms at 200 us) and the
+// owner's overhead shrinking (frame 245 ms at 10 us, 206 ms at 50 us; 192 ms with no calls). 50 us keeps the
+// overhead near a tenth of a 1 us item stream and a steal within a few ms.
+// (Until 2026-11-26 this header said stealing over TCP could not be made to work: that was the
+// read-before-flush bug of rma_window.hpp, not the transport.)
 //
 // A progress THREAD is not an option with this build: osc/pt2pt refuses MPI_THREAD_MULTIPLE in Open MPI 4.1,
 // and a thread spinning in MPI takes a core from the owner on a machine with fewer cores than ranks.
@@ -33,7 +37,7 @@
 namespace frontsteal::mpi {
 
 inline constexpr int kTagProgressProbe = 183;  // never sent: the probe only drives progress
-// auto's interval where a transport needs the target's progress (see WHAT IT COSTS above).
+// auto's interval where a transport needs the target's progress (see WHY AN INTERVAL above).
 inline constexpr double kAutoProgressEveryUs = 50;
 
 // At most once every `every_us` microseconds (0: every time; < 0: never): the time gate of the rma owner's
@@ -90,6 +94,7 @@ class OwnerProgress {
 struct ProgressChoice {
   double every_us = -1;      // < 0: off
   bool one_node = false;
+  bool open_mpi = false;     // MPI_Get_library_version starts with "Open MPI"
   std::string osc_requested; // "" when the launcher did not say
   std::string describe() const;
 };

@@ -197,7 +197,7 @@ class RmaWindow {
  private:
   // G1: the operation is complete at origin and target before its value is used; counts its payload bytes.
   // `result` is the operation's result buffer, taken by reference and read only AFTER the flush: until then
-  // MPI may not have written it. (Taking it by value read it before the flush — the bug of stops 22-25: on
+  // MPI may not have written it. (Taking it by value read it before the flush — the bug until 2026-11-26: on
   // osc/sm, which copies inside MPI_Get, nothing showed; over osc/pt2pt (TCP), where data arrives at the
   // flush, every Get, fetch-and-op and CAS returned 0, so thieves saw empty lists and never stole, the lock
   // CAS always "succeeded", and the central counter handed out item 0 forever. window_self_test.hpp now
