@@ -136,7 +136,7 @@ void FrameRunner::central_frame(Frame& fr) {
       execute(fr, static_cast<ItemId>(id));
       // Rank 0 is the counter's home: where the transport needs the target's progress (owner_progress.hpp),
       // every other rank's fetch-and-op waits for rank 0's next call into MPI.
-      if (rank_ == 0 && progress_.maybe_call(Clock::now())) stats_.progress_calls += 1;
+      if (rank_ == 0 && progress_.enabled() && progress_.maybe_call(Clock::now())) stats_.progress_calls += 1;
     }
   }
 }

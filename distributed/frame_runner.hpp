@@ -71,9 +71,9 @@ class FrameRunner {
   RmaWindow& win_;
   RmaActiveCount active_;
   OwnerProgress progress_;
-  // The request owner's poll: every item when the rma owner needs no progress calls (one node), else at the
-  // same interval (--owner-progress): over TCP a poll costs ~4-5 us, and polling after every 1 us item was
-  // measured to leave requests unanswered until the owner ran dry (README "Two hosts").
+  // The request owner's poll: every item when the rma owner needs no progress calls (Open MPI's osc/sm),
+  // else at the same interval (--owner-progress): over TCP a poll costs ~4-5 us, and polling after every
+  // 1 us item was measured to leave requests unanswered until the owner ran dry (README "Two hosts").
   PollGate request_poll_;
   std::vector<int> victims_;
   Defect defects_ = Defect::kNone;

@@ -51,12 +51,15 @@ int run_all(const fm::Options& o, fm::Workload& wl, int rank, int ranks, fm::Rma
 // 1 when the window cannot carry the protocols: not the unified memory model (G2 of rma_window.hpp), or its
 // one-sided operations return wrong results on this transport (window_self_test.hpp). Collective.
 int refuse_unusable_window(fm::RmaWindow& win, int rank) {
-  if (!win.unified()) {
+  int unified = win.unified() ? 1 : 0, all_unified = 0;
+  MPI_Allreduce(&unified, &all_unified, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);  // every rank decides alike
+  if (all_unified == 0) {
     if (rank == 0) std::fprintf(stderr, "%s: the window's memory model is not MPI_WIN_UNIFIED: the owner's local "
                                 "loads and stores would not be coherent with thieves' RMA; refusing to run\n",
                                 fm::kProgram.data());
     return 1;
   }
+  fm::arm_watchdog();  // an operation that never completes on this transport is reported, not a silent hang
   const fm::WindowSelfTest check = fm::run_window_self_test(win, MPI_COMM_WORLD);
   if (check.ok) return 0;
   if (!check.first_failure.empty()) {

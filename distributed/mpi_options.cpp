@@ -105,6 +105,8 @@ Options parse_options(int argc, char** argv) {
   cli.option("--tolerance", o.tolerance, "tessellation pixel tolerance")->check(CLI::PositiveNumber);
   cli.option("--json", o.json, "also write the results (or, with --calibrate, the latencies) as JSON to this file");
   cli.option("--markdown", o.markdown, "also write the medians with 95 % CIs and the noise verdict as markdown");
+  cli.option("--plots", o.plots, "also write plots to this directory: frame time per scheduler, busy and idle time "
+             "per rank (PNG through gnuplot, with their data and script)");
   cli.option("--watchdog-s", o.watchdog_s, "a rank that makes no progress for S s exits 86 (0 = off)")
       ->check(CLI::Range(0.0, 86400.0));
   std::string stall, die;

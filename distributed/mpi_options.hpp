@@ -24,6 +24,7 @@ struct Options {
   double tolerance = 1.0;
   std::string json;
   std::string markdown;
+  std::string plots;  // directory for the plots (mpi_plots.hpp); "" = none
   double watchdog_s = 60;
   int stall_rank = -1, stall_frame = -1, stall_ms = 0;
   int die_rank = -1, die_frame = -1;

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/paired_comparison.hpp"
+#include "distributed/mpi_plots.hpp"
 #include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
 
@@ -155,6 +156,12 @@ void report_results(const Options& o, const RunSummary& run, const std::vector<S
                      (warning.empty() ? "Noise monitor: every scheduler's window was quiet.\n" : warning + "\n");
     report::write_atomically(o.markdown, md);
     std::fprintf(stderr, "%s: wrote %s\n", kProgram.data(), o.markdown.c_str());
+  }
+  if (!o.plots.empty()) {
+    write_run_plots(o.plots, std::to_string(run.ranks) + " ranks, " + run.scene + ", " + std::to_string(run.frames) +
+                             " frames, commit " + FRONTSTEAL_GIT_COMMIT + "; " + run.progress.describe(),
+                    results);
+    std::fprintf(stderr, "%s: wrote the plots to %s\n", kProgram.data(), o.plots.c_str());
   }
 }
 

@@ -23,8 +23,11 @@ ProgressChoice resolve_owner_progress(const std::string& option, MPI_Comm comm) 
   // Only Open MPI's osc/sm is known here to need no target progress (a Get is the origin's own load). MPICH
   // 4.0.2 (ch4:ucx) on one node does: with no progress calls a thief's operations waited for a busy victim to
   // run dry (0 rma steals in 12 skewed frames at 2 ranks; 12 with calls every 50 us).
-  const bool sm_possible = c.open_mpi && c.one_node &&
-                           (c.osc_requested.empty() || c.osc_requested.find("sm") != std::string::npos);
+  // OMPI_MCA_osc is a comma list of components, or "^a,b" for every component but those.
+  const bool excluded = !c.osc_requested.empty() && c.osc_requested[0] == '^';
+  const bool names_sm = c.osc_requested.find("sm") != std::string::npos;
+  const bool sm_allowed = c.osc_requested.empty() || (excluded ? !names_sm : names_sm);
+  const bool sm_possible = c.open_mpi && c.one_node && sm_allowed;
   if (option == "auto") {
     c.every_us = sm_possible ? -1 : kAutoProgressEveryUs;
   } else if (option == "off") {

@@ -160,8 +160,10 @@ class Model {
       k.executed.push_back(static_cast<ItemId>(id));
     }
     // Rank 0 pays a progress call per interval of its chunk where the transport needs them (frame_runner.cpp).
-    if (r == 0 && lat_.needs_target_progress && lat_.progress_every > 0) {
-      end += lat_.progress_call * std::floor((end - c) / lat_.progress_every);
+    if (r == 0 && lat_.needs_target_progress) {
+      const double items = static_cast<double>(std::min<std::uint64_t>(s + grain, w_.items) - s);
+      end += lat_.progress_call *
+             (lat_.progress_every > 0 ? std::min(items, std::floor((end - c) / lat_.progress_every)) : items);
     }
     k.busy = true;
     k.busy_until = end;

@@ -88,5 +88,8 @@ Result simulate(Scheduler s, int ranks, const Workload& w, const Latencies& lat,
                 Defect defect = Defect::kNone);
 
 report::Json latencies_json(const Latencies& lat);
+// --plots DIR: efficiency against ranks (log scale), one line per latency set and scheduler, labelled
+// SIMULATED; `rows` as in the --json document, `subtitle` the workload. Throws naming a file it cannot write.
+void write_efficiency_plot(const std::string& dir, const report::Json& rows, const std::string& subtitle);
 
 }  // namespace frontsteal::mpi::sim

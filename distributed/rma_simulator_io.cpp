@@ -1,10 +1,13 @@
-// rma_simulator_io.cpp — the simulator's inputs and labels (rma_simulator.hpp): latencies from a calibration
-// file, and the latencies as JSON for the SIMULATED output.
+// rma_simulator_io.cpp — the simulator's inputs and outputs (rma_simulator.hpp): latencies from a calibration
+// file, the latencies as JSON for the SIMULATED output, and the efficiency plot.
 #include <algorithm>
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <stdexcept>
 
 #include "distributed/rma_simulator.hpp"
+#include "reporting/results_dir.hpp"
 
 namespace frontsteal::mpi::sim {
 namespace {
@@ -61,6 +64,37 @@ report::Json latencies_json(const Latencies& l) {
           {"request_poll_ns", l.poll}, {"owner_progress_call_ns", l.progress_call},
           {"atomic_service_ns", l.atomic_service}, {"needs_target_progress", l.needs_target_progress},
           {"progress_every_ns", l.progress_every}};
+}
+
+void write_efficiency_plot(const std::string& dir_name, const report::Json& rows, const std::string& subtitle) {
+  const report::ResultsDir dir("frontsteal-mpi-simulate", dir_name);
+  std::map<std::string, std::vector<std::pair<int, double>>> lines;  // "tcp rma" -> (ranks, efficiency)
+  std::vector<std::string> order;
+  for (const report::Json& row : rows) {
+    const std::string key = row.at("latencies").get<std::string>() + " " + row.at("scheduler").get<std::string>();
+    if (!lines.count(key)) order.push_back(key);
+    lines[key].emplace_back(row.at("ranks").get<int>(), row.at("efficiency").get<double>());
+  }
+  std::ostringstream dat;
+  for (const std::string& key : order) {
+    dat << '"' << key << "\"\n";
+    for (const auto& [ranks, eff] : lines[key]) dat << ranks << ' ' << eff << '\n';
+    dat << "\n\n";
+  }
+  dir.write("simulated-efficiency.dat", dat.str());
+  std::string title = subtitle;
+  std::replace(title.begin(), title.end(), '"', '\'');
+  std::ostringstream gp;
+  gp << "# gnuplot script written by frontsteal-mpi-simulate; run from " << dir_name
+     << ": gnuplot simulated-efficiency.gp\n"
+     << "set terminal pngcairo size 1100,640 font 'sans,10'\nset output 'simulated-efficiency.png'\n"
+     << "set title \"SIMULATED efficiency = work / (ranks x time), not a measurement\\n" << title << "\"\n"
+     << "set logscale x 2\nset xlabel 'ranks'\nset ylabel 'efficiency'\nset yrange [0:1.05]\nset grid\n"
+     << "set key outside right top\n"
+     << "plot for [i=0:" << (order.empty() ? 0 : order.size() - 1) << "] 'simulated-efficiency.dat' index i "
+     << "using 1:2 with linespoints lt 1+i%4 dt 1+i/4 pt 1+i title columnheader(1)\n";
+  dir.write("simulated-efficiency.gp", gp.str());
+  dir.plot("simulated-efficiency.gp");
 }
 
 }  // namespace frontsteal::mpi::sim

@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
              "progress call / request poll interval (frontsteal-mpi --owner-progress; its auto is 50)")
       ->check(CLI::Range(0.0, 1e6));
   cli.option("--json", json, "also write the results as JSON");
+  std::string plots;
+  cli.option("--plots", plots, "also plot efficiency against ranks into this directory (PNG through gnuplot)");
   cli.option("--markdown", markdown, "also write the results as markdown");
   cli.option("--plant-defect", defect, "negative control: none | skip-reread (rma thieves keep [mid, end))")
       ->check(CLI::IsMember({"none", "skip-reread"}));
@@ -80,6 +82,12 @@ int main(int argc, char** argv) {
                               std::to_string(w.skew) + ", " + std::to_string(w.frames) + " frames\nlatencies used (ns):\n";
     std::printf("%s%s%s", title.c_str(), latencies_text.c_str(), t.terminal().c_str());
     if (!json.empty()) report::write_atomically(json, doc.dump(2) + "\n");
+    if (!plots.empty()) {
+      sim::write_efficiency_plot(plots, doc["rows"], std::to_string(w.items) + " items/frame, light " +
+                                 report::fixed_text(w.light_ns, 0) + " ns, heavy fifth x" + std::to_string(w.skew) +
+                                 "; tcp = calibration over TCP (owner calls into MPI every " +
+                                 report::fixed_text(progress_every_us, 0) + " us), shm = shared memory");
+    }
     if (!markdown.empty()) {
       report::write_atomically(markdown, "# " + title + "\n```\n" + latencies_text + "```\n\n" + t.markdown());
     }

@@ -190,7 +190,7 @@ class RmaWindow {
   }
   void flush(int rank) { check_mpi(MPI_Win_flush(rank, win_), "MPI_Win_flush"); }
 
-  // Test hook (--defect read-before-flush; never in measured runs): results are read before MPI_Win_flush,
+  // Test hook (--plant-defect read-before-flush; never in measured runs): results are read before MPI_Win_flush,
   // as the old code did. Invisible where MPI_Get copies at once (osc/sm); caught by the self-test elsewhere.
   void plant_read_before_flush(bool on) noexcept { read_before_flush_ = on; }
 
@@ -204,7 +204,8 @@ class RmaWindow {
   // checks every operation's result at start; plant_read_before_flush() is that bug, for its negative control.)
   template <class T>
   T completed(int rank, std::size_t bytes, const T& result) {
-    const T before_flush = result;
+    T before_flush{};
+    if (read_before_flush_) before_flush = result;  // only the planted defect touches it before the flush
     flush(rank);
     bytes_ += bytes;
     return read_before_flush_ ? before_flush : result;

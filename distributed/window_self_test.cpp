@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <thread>
 
+#include "distributed/rank_watchdog.hpp"
+
 namespace frontsteal::mpi {
 namespace {
 
@@ -13,6 +15,8 @@ constexpr std::uint32_t kLockMark = 0x10C00000u;
 constexpr std::uint32_t kCountMark = 0xC0DE0000u;
 constexpr std::uint32_t kPutMark = 0xABCD0000u;
 constexpr std::int32_t kActiveBase = 1000;
+constexpr std::uint64_t kNextItemBase = 0x5EED00000000ull;  // beyond 32 bits: the 64-bit path is checked
+constexpr std::uint32_t kEntryMark = 0xE0000000u;
 
 // Records the first mismatch of this rank.
 class Expect {
@@ -47,8 +51,12 @@ WindowSelfTest run_window_self_test(RmaWindow& win, MPI_Comm comm) {
   // Known values: local stores for the owner-written words, an accumulate for the accumulate-only lock word.
   win.local(kFront).store(kFrontMark + u(me), std::memory_order_relaxed);
   win.local(kEntryCount).store(kCountMark + u(me), std::memory_order_relaxed);
+  win.local_entries()[0] = WinEntry{kEntryMark + u(me), kEntryMark + u(me) + 7, u(me)};
   win.accumulate_replace(me, kLock, kLockMark + u(me));
-  if (me == 0) win.accumulate_replace(0, kActive, kActiveBase);
+  if (me == 0) {
+    win.accumulate_replace(0, kActive, kActiveBase);
+    win.accumulate_replace(0, kNextItem, kNextItemBase);
+  }
   win.sync();
   MPI_Barrier(comm);
 
@@ -61,12 +69,20 @@ WindowSelfTest run_window_self_test(RmaWindow& win, MPI_Comm comm) {
       expect.equal("MPI_Compare_and_swap of LockList (L2)", q,
                    win.compare_and_swap(q, kLock, kLockMark + u(q), kLockMark + u(q)), kLockMark + u(q));
       win.put(q, kEnd, kPutMark + u(t));
+      WinEntry entry{};
+      win.get_entries(q, 0, 1, &entry);
+      expect.equal("MPI_Get of the list body (entry 0's begin)", q, entry.begin, kEntryMark + u(q));
+      expect.equal("MPI_Get of the list body (entry 0's flat_begin)", q, entry.flat_begin, u(q));
       const std::int32_t before = win.fetch_and_op(0, kActive, std::int32_t{1}, MPI_SUM);
       expect.equal("MPI_Fetch_and_op(MPI_SUM) of the active count (A1)", 0, before, kActiveBase + t);
+      const std::uint64_t next = win.fetch_and_op(0, kNextItem, std::uint64_t{3}, MPI_SUM);
+      expect.equal("MPI_Fetch_and_op(MPI_SUM) of the central counter (64-bit)", 0, next,
+                   kNextItemBase + 3 * static_cast<std::uint64_t>(t));
     } else if (me == q) {
       std::this_thread::sleep_for(kTargetAsleep);  // no MPI call: a deferred operation cannot complete yet
     }
     MPI_Barrier(comm);
+    note_progress();  // the watchdog (armed by the caller) names a turn whose operation never completes
     if (me == q) {
       win.sync();
       expect.equal("MPI_Put of End (T3), read by its target", t, win.local(kEnd).load(std::memory_order_acquire),
@@ -81,8 +97,12 @@ WindowSelfTest run_window_self_test(RmaWindow& win, MPI_Comm comm) {
   win.local(kFront).store(0u, std::memory_order_relaxed);
   win.local(kEnd).store(0u, std::memory_order_relaxed);
   win.local(kEntryCount).store(0u, std::memory_order_relaxed);
+  win.local_entries()[0] = WinEntry{};
   win.accumulate_replace(me, kLock, 0u);
-  if (me == 0) win.accumulate_replace(0, kActive, std::int32_t{0});
+  if (me == 0) {
+    win.accumulate_replace(0, kActive, std::int32_t{0});
+    win.accumulate_replace(0, kNextItem, std::uint64_t{0});
+  }
   win.sync();
   int mine = result.ok ? 1 : 0, all = 0;
   MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, comm);

@@ -11,12 +11,15 @@
 //
 // WHAT IT CHECKS. Turn by turn, rank t (the origin) operates on rank q = t + 1 (mod P), whose words hold
 // values no other code writes (0xF00D0000 + q in Front, 0x10C00000 + q in LockList, 0xC0DE0000 + q in the entry
-// count): L1's fetch-and-op MPI_NO_OP, T1's Get, L2's compare-and-swap (expected = the value there: it must
-// report finding it), T3's Put (q then reads it locally), and A1's fetch-and-op MPI_SUM on rank 0's count.
-// The target sleeps kTargetAsleep before calling into MPI again, so on a transport that needs the target's
-// progress (osc/pt2pt) the first operation of each turn cannot have completed before the origin's flush:
-// a result read early is then certainly wrong, not wrong by luck of timing. Every word is reset afterwards.
-// Cost: P turns of kTargetAsleep plus a few round trips (~25 ms per rank).
+// count, a marked entry 0 in the list body): L1's fetch-and-op MPI_NO_OP, T1's Get, the entry count's Get,
+// L2's compare-and-swap (expected = the value there: it must report finding it), T3's Put (q then reads it
+// locally), the list body's multi-word Get, A1's fetch-and-op MPI_SUM on rank 0's 32-bit count, and the
+// central counter's 64-bit MPI_SUM (a base beyond 2^32). The target sleeps kTargetAsleep (no MPI call) once
+// it leaves the turn's barrier, so on a transport that needs the target's progress (osc/pt2pt) the origin's
+// first operation can complete early only if the target answers within the microseconds between the two
+// leaving the barrier AND the reply is processed inside the very MPI call that sent the request — not seen in
+// any run here; a result read early is then wrong. Every word is reset afterwards (install's L2 would spin on
+// a LockList left non-zero). Cost: P turns of kTargetAsleep plus a few round trips (~25 ms per rank).
 //
 // ITS NEGATIVE CONTROL: --plant-defect read-before-flush (RmaWindow::plant_read_before_flush) with
 // --mca osc pt2pt must fail here (tests/CMakeLists.txt, distributed.mpi.control_read_before_flush_caught).

@@ -2,7 +2,13 @@
 // intervals that contain them, and the noise warning appears exactly when a scheduler's window was busy (the
 // quiet run is its deterministic negative control).
 #include <catch2/catch.hpp>
+#include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "distributed/mpi_plots.hpp"
 #include "distributed/mpi_report.hpp"
 
 namespace fm = frontsteal::mpi;
@@ -43,4 +49,37 @@ TEST_CASE("the noise warning names the busy scheduler, and a quiet run has none"
   const std::string w = fm::noise_warning({result(true)});
   CHECK_THAT(w, Catch::Matchers::StartsWith("WARNING: the machine was not quiet"));
   CHECK_THAT(w, Catch::Matchers::Contains("rma: other processes used 40 %"));
+}
+
+// --plots: the data holds what the run measured (frame times in ms, one busy/idle row per rank), the script
+// and the PNGs exist (bootstrap installs gnuplot); a directory that cannot be created is an error naming it,
+// not a silently missing plot (its negative control).
+TEST_CASE("the run plots hold the frame and per-rank data, with their script and both PNGs", "[mpi_report]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("frontsteal-mpi-plots-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fm::SchedulerResult a = result(false);
+  a.ranks[0].busy_s = 1.5;
+  a.ranks[0].idle_s = 0.25;
+  fm::SchedulerResult b = result(false);
+  b.name = "static";
+  fm::write_run_plots(dir.string(), "2 ranks, test", {a, b});
+  std::ifstream frames(dir / "frontsteal-mpi-frames.dat");
+  const std::string f((std::istreambuf_iterator<char>(frames)), std::istreambuf_iterator<char>());
+  CHECK(f.find("\"rma\"\n0 10\n1 11\n") == 0);
+  CHECK(f.find("\"static\"") != std::string::npos);
+  std::ifstream ranks(dir / "frontsteal-mpi-ranks.dat");
+  const std::string r((std::istreambuf_iterator<char>(ranks)), std::istreambuf_iterator<char>());
+  CHECK(r.find("\"rma r0\" 1.5 0.25\n") != std::string::npos);
+  CHECK(r.find("\"static r1\"") != std::string::npos);
+  CHECK(fs::exists(dir / "frontsteal-mpi.gp"));
+  CHECK(fs::file_size(dir / "frontsteal-mpi-frames.png") > 1000);
+  CHECK(fs::file_size(dir / "frontsteal-mpi-ranks.png") > 1000);
+  fs::remove_all(dir);
+
+  const fs::path file = fs::temp_directory_path() / ("frontsteal-mpi-plots-file-" + std::to_string(::getpid()));
+  std::ofstream(file) << "x";
+  REQUIRE_THROWS_WITH(fm::write_run_plots((file / "sub").string(), "t", {a}),
+                      Catch::Matchers::Contains((file / "sub").string()));
+  fs::remove(file);
 }

@@ -5,6 +5,12 @@
 // empty share).
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
 #include "distributed/rma_simulator.hpp"
 
 namespace sim = frontsteal::mpi::sim;
@@ -80,4 +86,21 @@ TEST_CASE("negative control: a thief that skips the re-read (T5) is caught by th
   const sim::Result broken = sim::simulate(sim::Scheduler::kRma, 4, w, lat, 1, sim::Defect::kSkipReread);
   CHECK_FALSE(broken.exactly_once);
   CHECK_THAT(broken.audit_failure, Catch::Matchers::Contains("executed 2 times"));
+}
+
+// --plots: one line per latency set and scheduler, ranks in order, the PNG drawn (bootstrap installs gnuplot).
+TEST_CASE("the efficiency plot holds one line per latency set and scheduler", "[rma_simulator]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("frontsteal-sim-plot-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const frontsteal::report::Json rows = frontsteal::report::Json::parse(
+      R"([{"latencies":"shm","scheduler":"rma","ranks":2,"efficiency":0.99},
+          {"latencies":"shm","scheduler":"rma","ranks":16,"efficiency":0.9},
+          {"latencies":"tcp","scheduler":"static","ranks":2,"efficiency":1.0}])");
+  sim::write_efficiency_plot(dir.string(), rows, "test workload");
+  std::ifstream in(dir / "simulated-efficiency.dat");
+  const std::string d((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(d == "\"shm rma\"\n2 0.99\n16 0.9\n\n\n\"tcp static\"\n2 1\n\n\n");
+  CHECK(fs::file_size(dir / "simulated-efficiency.png") > 1000);
+  fs::remove_all(dir);
 }

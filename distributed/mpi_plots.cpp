@@ -1,0 +1,60 @@
+// mpi_plots.cpp — frontsteal-mpi's plots (mpi_plots.hpp).
+#include "distributed/mpi_plots.hpp"
+
+#include <sstream>
+
+#include "distributed/mpi_options.hpp"
+#include "reporting/results_dir.hpp"
+
+namespace frontsteal::mpi {
+namespace {
+
+// A string for a gnuplot double-quoted literal: quotes and backslashes escaped, control characters dropped.
+std::string gnuplot_text(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) continue;
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+void write_run_plots(const std::string& dir_name, const std::string& title, const std::vector<SchedulerResult>& results) {
+  const report::ResultsDir dir(std::string(kProgram), dir_name);
+  std::ostringstream frames;  // one gnuplot index per scheduler: frame, ms
+  for (const SchedulerResult& r : results) {
+    frames << "\"" << r.name << "\"\n";
+    for (std::size_t f = 0; f < r.frame_s.size(); ++f) frames << f << ' ' << 1000 * r.frame_s[f] << '\n';
+    frames << "\n\n";
+  }
+  dir.write("frontsteal-mpi-frames.dat", frames.str());
+  std::ostringstream ranks;  // one row per scheduler and rank: label, busy s, idle s
+  ranks << "# scheduler/rank busy_s idle_s\n";
+  for (const SchedulerResult& r : results) {
+    for (std::size_t k = 0; k < r.ranks.size(); ++k) {
+      ranks << '"' << r.name << " r" << k << "\" " << r.ranks[k].busy_s << ' ' << r.ranks[k].idle_s << '\n';
+    }
+  }
+  dir.write("frontsteal-mpi-ranks.dat", ranks.str());
+  std::ostringstream gp;
+  gp << "# gnuplot script written by frontsteal-mpi; run from " << dir_name << ": gnuplot frontsteal-mpi.gp\n"
+     << "set terminal pngcairo size 1100,640 font 'sans,10'\nset grid\nset key outside right top\n"
+     << "set output 'frontsteal-mpi-frames.png'\n"
+     << "set title \"Frame time per scheduler (measured)\\n" << gnuplot_text(title) << "\"\n"
+     << "set xlabel 'frame'\nset ylabel 'ms'\nset yrange [0:*]\n"
+     << "plot for [i=0:" << (results.empty() ? 0 : results.size() - 1)
+     << "] 'frontsteal-mpi-frames.dat' index i using 1:2 with linespoints lt 1+i pt 1+i title columnheader(1)\n"
+     << "set output 'frontsteal-mpi-ranks.png'\n"
+     << "set title \"Busy and idle time per rank, all frames (measured)\\n" << gnuplot_text(title) << "\"\n"
+     << "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.8 border -1\n"
+     << "set boxwidth 0.75\nset xtics rotate by -45\nset ylabel 's'\nset xlabel ''\nunset xrange\n"
+     << "plot 'frontsteal-mpi-ranks.dat' using 2:xtic(1) title 'busy (items)' lc rgb '#3b75af', "
+        "'' using 3 title 'idle (stealing, waiting)' lc rgb '#f0a030'\n";
+  dir.write("frontsteal-mpi.gp", gp.str());
+  dir.plot("frontsteal-mpi.gp");
+}
+
+}  // namespace frontsteal::mpi
