@@ -9,12 +9,19 @@
 namespace frontsteal::mpi {
 namespace {
 
-// A string for a gnuplot double-quoted literal: quotes and backslashes escaped, control characters dropped.
+// A string for a gnuplot double-quoted literal: quotes and backslashes escaped, control characters dropped,
+// and a line break after each "; " so a long title wraps instead of running off the image.
 std::string gnuplot_text(const std::string& s) {
   std::string out;
-  for (char c : s) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
     if (c == '"' || c == '\\') out += '\\';
     if (static_cast<unsigned char>(c) < 0x20) continue;
+    if (c == ';' && i + 1 < s.size() && s[i + 1] == ' ') {
+      out += ";\\n";
+      ++i;
+      continue;
+    }
     out += c;
   }
   return out;
@@ -41,7 +48,7 @@ void write_run_plots(const std::string& dir_name, const std::string& title, cons
   dir.write("frontsteal-mpi-ranks.dat", ranks.str());
   std::ostringstream gp;
   gp << "# gnuplot script written by frontsteal-mpi; run from " << dir_name << ": gnuplot frontsteal-mpi.gp\n"
-     << "set terminal pngcairo size 1100,640 font 'sans,10'\nset grid\nset key outside right top\n"
+     << "set terminal pngcairo size 1100,640 font 'sans,10' noenhanced\nset grid\nset key outside right top\n"
      << "set output 'frontsteal-mpi-frames.png'\n"
      << "set title \"Frame time per scheduler (measured)\\n" << gnuplot_text(title) << "\"\n"
      << "set xlabel 'frame'\nset ylabel 'ms'\nset yrange [0:*]\n"

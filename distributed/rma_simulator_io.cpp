@@ -87,7 +87,7 @@ void write_efficiency_plot(const std::string& dir_name, const report::Json& rows
   std::ostringstream gp;
   gp << "# gnuplot script written by frontsteal-mpi-simulate; run from " << dir_name
      << ": gnuplot simulated-efficiency.gp\n"
-     << "set terminal pngcairo size 1100,640 font 'sans,10'\nset output 'simulated-efficiency.png'\n"
+     << "set terminal pngcairo size 1100,640 font 'sans,10' noenhanced\nset output 'simulated-efficiency.png'\n"
      << "set title \"SIMULATED efficiency = work / (ranks x time), not a measurement\\n" << title << "\"\n"
      << "set logscale x 2\nset xlabel 'ranks'\nset ylabel 'efficiency'\nset yrange [0:1.05]\nset grid\n"
      << "set key outside right top\n"
