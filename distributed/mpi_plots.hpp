@@ -1,7 +1,8 @@
 // mpi_plots.hpp — frontsteal-mpi --plots DIR: what a reader would rather look at than read, as data, a
 // gnuplot script and PNGs (reporting/results_dir.hpp: a missing gnuplot is a warning, the script stays).
 //   frontsteal-mpi-frames.png  frame time along the frames, one line per scheduler (measured)
-//   frontsteal-mpi-ranks.png   each rank's busy and idle seconds per scheduler: the imbalance stealing removes
+//   frontsteal-mpi-ranks.png   each rank's busy, idle and remaining seconds per scheduler: the imbalance
+//                              stealing removes, and what the protocol and the transport cost
 //   frontsteal-mpi-frames.dat, frontsteal-mpi-ranks.dat, frontsteal-mpi.gp  the data and the script
 #pragma once
 
