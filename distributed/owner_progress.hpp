@@ -16,11 +16,11 @@
 // auto = off when the library is Open MPI, every rank shares one node and no --mca osc other than sm is set
 // (osc/sm); otherwise every kAutoProgressEveryUs.
 // WHY AN INTERVAL (measured, README "Two hosts"; 2 ranks over TCP, 1 us light items): a call after EVERY item
-// left a thief's operations, and request messages, unanswered until the victim ran dry (0 steals in 10
-// frames; the cause inside Open MPI was not pinned down), while every 10-200 us gave 25-34 steals, with a
-// mean steal latency growing with the interval (0.6 ms at 10 us, 2.3 ms at 50 us, 8.7 ms at 200 us) and the
-// owner's overhead shrinking (frame 245 ms at 10 us, 206 ms at 50 us; 192 ms with no calls). 50 us keeps the
-// overhead near a tenth of a 1 us item stream and a steal within a few ms.
+// mostly left a thief's operations, and request messages, unanswered until the victim ran dry (0, 3 and 0
+// steals in three 10-frame runs; the cause inside Open MPI was not pinned down), while every 10-200 us gave
+// 21-37 steals, the mean steal latency growing with the interval (~0.5 ms at 10 us, 2.2 ms at 50 us, 7-11 ms
+// at 200 us) and the owner's overhead shrinking (frame 236 ms at 10 us, 201 ms at 50 us, 190 ms with no
+// calls; distributed/results/owner_progress_sweep_tcp.txt). 50 us keeps a steal within a few ms.
 // (Until 2026-11-26 this header said stealing over TCP could not be made to work: that was the
 // read-before-flush bug of rma_window.hpp, not the transport.)
 //
