@@ -8,27 +8,6 @@
 #include "reporting/results_dir.hpp"
 
 namespace frontsteal::mpi {
-namespace {
-
-// A string for a gnuplot double-quoted literal: quotes and backslashes escaped, control characters dropped,
-// and a line break after each "; " so a long title wraps instead of running off the image.
-std::string gnuplot_text(const std::string& s) {
-  std::string out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const char c = s[i];
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) continue;
-    if (c == ';' && i + 1 < s.size() && s[i + 1] == ' ') {
-      out += ";\\n";
-      ++i;
-      continue;
-    }
-    out += c;
-  }
-  return out;
-}
-
-}  // namespace
 
 void write_run_plots(const std::string& dir_name, const std::string& title, const std::vector<SchedulerResult>& results) {
   const report::ResultsDir dir(std::string(kProgram), dir_name);
@@ -57,12 +36,12 @@ void write_run_plots(const std::string& dir_name, const std::string& title, cons
   gp << "# gnuplot script written by frontsteal-mpi; run from " << dir_name << ": gnuplot frontsteal-mpi.gp\n"
      << "set terminal pngcairo size 1100,640 font 'sans,10' noenhanced\nset grid\nset key outside bottom center horizontal\n"
      << "set output 'frontsteal-mpi-frames.png'\n"
-     << "set title \"Frame time per scheduler (measured)\\n" << gnuplot_text(title) << "\"\n"
+     << "set title \"Frame time per scheduler (measured)\\n" << report::gnuplot_text(title, true) << "\"\n"
      << "set xlabel 'frame'\nset ylabel 'ms'\nset yrange [0:*]\n"
      << "plot for [i=0:" << (results.empty() ? 0 : results.size() - 1)
      << "] 'frontsteal-mpi-frames.dat' index i using 1:2 with linespoints lt 1+i pt 1+i title columnheader(1)\n"
      << "set output 'frontsteal-mpi-ranks.png'\n"
-     << "set title \"Busy and idle time per rank, all frames (measured)\\n" << gnuplot_text(title) << "\"\n"
+     << "set title \"Busy and idle time per rank, all frames (measured)\\n" << report::gnuplot_text(title, true) << "\"\n"
      << "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.8 border -1\n"
      << "set boxwidth 0.75\nset xtics rotate by -45\nset ylabel 's'\nset xlabel ''\nunset xrange\n"
      << "plot 'frontsteal-mpi-ranks.dat' using 2:xtic(1) title 'busy (items)' lc rgb '#3b75af', "

@@ -82,13 +82,11 @@ void write_efficiency_plot(const std::string& dir_name, const report::Json& rows
     dat << "\n\n";
   }
   dir.write("simulated-efficiency.dat", dat.str());
-  std::string title = subtitle;
-  std::replace(title.begin(), title.end(), '"', '\'');
   std::ostringstream gp;
   gp << "# gnuplot script written by frontsteal-mpi-simulate; run from " << dir_name
      << ": gnuplot simulated-efficiency.gp\n"
      << "set terminal pngcairo size 1100,640 font 'sans,10' noenhanced\nset output 'simulated-efficiency.png'\n"
-     << "set title \"SIMULATED efficiency = work / (ranks x time), not a measurement\\n" << title << "\"\n"
+     << "set title \"SIMULATED efficiency = work / (ranks x time), not a measurement\\n" << report::gnuplot_text(subtitle) << "\"\n"
      << "set logscale x 2\nset xlabel 'ranks'\nset ylabel 'efficiency'\nset yrange [0:1.05]\nset grid\n"
      << "set key outside right top\n"
      << "plot for [i=0:" << (order.empty() ? 0 : order.size() - 1) << "] 'simulated-efficiency.dat' index i "

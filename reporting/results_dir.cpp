@@ -18,6 +18,22 @@ Json document(std::string_view program, int schema_version, std::string_view kin
   return doc;
 }
 
+std::string gnuplot_text(std::string_view s, bool break_after_semicolons) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const char c = s[i];
+    if (static_cast<unsigned char>(c) < 0x20) continue;
+    if (break_after_semicolons && c == ';' && i + 1 < s.size() && s[i + 1] == ' ') {
+      out += ";\\n";
+      ++i;
+      continue;
+    }
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
 void write_atomically(const std::filesystem::path& path, std::string_view text) {
   const std::filesystem::path tmp = path.string() + ".tmp";
   {

@@ -15,6 +15,10 @@
 
 namespace frontsteal::report {
 
+// `s` as the body of a gnuplot double-quoted string: quotes and backslashes escaped, control characters
+// dropped; with break_after_semicolons, "; " becomes a line break, so a long title wraps inside the image.
+std::string gnuplot_text(std::string_view s, bool break_after_semicolons = false);
+
 // The common header of every results file: {schema_version, program, kind, commit}.
 Json document(std::string_view program, int schema_version, std::string_view kind, std::string_view commit);
 

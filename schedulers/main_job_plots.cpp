@@ -7,20 +7,7 @@
 
 namespace frontsteal::main_job {
 
-namespace {
-
-// A string for a gnuplot double-quoted literal: quotes and backslashes escaped, control characters dropped.
-std::string gnuplot_text(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) continue;
-    out += c;
-  }
-  return out;
-}
-
-}  // namespace
+using report::gnuplot_text;
 
 // Plots: speed-up against P (one line per scheduler, the ideal dashed), and frame time along the path at the
 // largest P not above the core count. The data and the script are always written; gnuplot runs unless --no-plot.
