@@ -32,6 +32,8 @@ packages=(
   # the main job's plots (schedulers/frontsteal_main.cpp writes a gnuplot script and runs it); oneTBB is
   # listed above (libtbb-dev), OpenMP comes with g++ (libgomp)
   gnuplot-nox
+  # the end-to-end tests read the main job's JSON files (tests/schedulers/frontsteal_calibrate_test.sh)
+  python3
   # the lock-free global queue peer, moodycamel-queue (schedulers/concurrent_queue_scheduler.hpp): header-only
   libconcurrentqueue-dev
   # openmp-static-steal: LLVM's OpenMP runtime (static_steal), in its own executable built with clang++-14

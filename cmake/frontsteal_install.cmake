@@ -1,13 +1,13 @@
 # frontsteal_install.cmake — what `cmake --install <build> [--prefix P]` puts under P, so that another project
-# can `find_package(frontsteal)` and link frontsteal::core, ::schedulers, ::tessellate, ::reporting or
+# can `find_package(frontsteal)` and link frontsteal::core, ::schedulers, ::tessellate, ::reporting, ::measure or
 # ::relacy_backend
 # (examples/ are two such projects; tests/install/consume_installed.cmake builds them against an install).
 #
-#   include/frontsteal/{core,schedulers,tessellate,reporting,models_check}/*.hpp  the headers, repository paths
-#   lib/libfrontsteal_{schedulers,tessellate,reporting}.a               the three compiled libraries
+#   include/frontsteal/{core,schedulers,tessellate,reporting,measure,models_check}/*.hpp  the headers, repository paths
+#   lib/libfrontsteal_{schedulers,tessellate,reporting,measure}.a      the four compiled libraries
 #   lib/cmake/frontsteal/                                              config, version and target files
 #
-# Only these five targets are exported. Executables, the CAD importer (Open CASCADE), the renderer (EGL, GL)
+# Only these six targets are exported. Executables, the CAD importer (Open CASCADE), the renderer (EGL, GL)
 # and the test libraries stay in the build tree, so none of their dependencies reach a consumer: the export
 # needs Threads, TBB and OpenMP (linked privately into the static frontsteal::schedulers, so they appear as
 # link-only dependencies), glm (frontsteal::tessellate's public headers), nlohmann_json and CLI11
@@ -16,7 +16,7 @@ include(CMakePackageConfigHelpers)
 
 set(FRONTSTEAL_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/frontsteal)
 
-install(TARGETS frontsteal_core frontsteal_schedulers frontsteal_tessellate frontsteal_reporting
+install(TARGETS frontsteal_core frontsteal_schedulers frontsteal_tessellate frontsteal_reporting frontsteal_measure
         EXPORT frontsteal-targets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})  # include dirs: $<INSTALL_INTERFACE:> on each target
 install(EXPORT frontsteal-targets NAMESPACE frontsteal:: DESTINATION ${FRONTSTEAL_INSTALL_CMAKEDIR})
@@ -24,10 +24,10 @@ install(EXPORT frontsteal-targets NAMESPACE frontsteal:: DESTINATION ${FRONTSTEA
 # Headers by directory (non-recursive: benchmarks/, results/, fuzz/ stay out), so a header added to one of these
 # directories is installed without editing this file. The Open CASCADE importer's headers are left out: its
 # library is not installed; so are the main job's pieces (schedulers/main_job_*.hpp: the frontsteal executable's).
-foreach(_dir core schedulers tessellate reporting)
+foreach(_dir core schedulers tessellate reporting measure)
   file(GLOB _headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${_dir}/*.hpp)
   list(FILTER _headers EXCLUDE REGEX "/(occt_import|isolated_import)\\.hpp$")
-  list(FILTER _headers EXCLUDE REGEX "/main_job_[a-z_]+\\.hpp$")  # the main job's pieces: not a library
+  list(FILTER _headers EXCLUDE REGEX "/(main_job_[a-z_]+|calibration_summary)\\.hpp$")  # the programs' pieces: not a library
   install(FILES ${_headers} DESTINATION ${FRONTSTEAL_INSTALL_INCLUDEDIR}/${_dir})
 endforeach()
 

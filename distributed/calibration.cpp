@@ -5,9 +5,9 @@
 #include <chrono>
 #include <cstdio>
 
-#include "core/paired_comparison.hpp"
 #include "distributed/rank_watchdog.hpp"
 #include "distributed/rma_stealing.hpp"
+#include "measure/paired_comparison.hpp"
 #include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
 

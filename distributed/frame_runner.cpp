@@ -8,8 +8,8 @@
 #include <random>
 #include <thread>
 
-#include "core/paired_comparison.hpp"
 #include "distributed/rank_watchdog.hpp"
+#include "measure/paired_comparison.hpp"
 
 namespace frontsteal::mpi {
 

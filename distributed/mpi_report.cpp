@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <numeric>
 
-#include "core/paired_comparison.hpp"
 #include "distributed/mpi_plots.hpp"
+#include "measure/paired_comparison.hpp"
 #include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
 

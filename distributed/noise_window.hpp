@@ -1,5 +1,5 @@
 // noise_window.hpp — was the machine (every node) quiet while one scheduler's frames ran? The main job's noise
-// monitor (schedulers/noise_monitor.hpp) over a window, made aware of ranks.
+// monitor (measure/noise_monitor.hpp) over a window, made aware of ranks.
 //
 // The monitor calls "other processes" every tick of machine-wide busy time that is not its own. Here the
 // other ranks on the same node are not noise, they are the measurement: each rank samples /proc before and
@@ -11,7 +11,7 @@
 #include <mpi.h>
 
 #include "distributed/rank_stats.hpp"
-#include "schedulers/noise_monitor.hpp"
+#include "measure/noise_monitor.hpp"
 
 namespace frontsteal::mpi {
 

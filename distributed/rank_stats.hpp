@@ -24,7 +24,7 @@ struct RankStats {
   double t4_spins = 0;
   double idle_s = 0;                    // time in the idle (stealing / requesting) loop, steals' work excluded
   double progress_calls = 0;            // rma owner: MPI_Iprobe calls made for target progress (--owner-progress)
-  // Medians with 95 % percentile-bootstrap intervals (core/paired_comparison.hpp), computed on the rank.
+  // Medians with 95 % percentile-bootstrap intervals (measure/paired_comparison.hpp), computed on the rank.
   double steal_latency_median_us = 0, steal_latency_ci_low_us = 0, steal_latency_ci_high_us = 0;
   double owner_overhead_ci_low_ns = 0, owner_overhead_ci_high_ns = 0;
 };

@@ -12,35 +12,43 @@ std::string fixed(double v, int digits) { return report::fixed_text(v, digits); 
 }  // namespace
 
 std::string JudgedComparison::text() const {
-  std::string v = stats::to_string(c.verdict);
-  if (c.verdict != stats::Verdict::kTooFewRepeats) v += std::string(" ") + (c.effect_pct >= 0 ? "+" : "") + fixed(c.effect_pct, 1) + " %";
+  const measure::LogInterval& li = c.chosen();
+  std::string v = measure::to_string(c.decision);
+  if (li.valid) v += std::string(" ") + (li.effect_pct() >= 0 ? "+" : "") + fixed(li.effect_pct(), 1) + " %";
   if (!reliable()) v = "unreliable (" + v + ")";
-  return fixed(c.ratio.median, 3) + " [" + fixed(c.ratio.low, 3) + ", " + fixed(c.ratio.high, 3) + "] " + v;
+  if (!li.valid) return v;
+  return fixed(li.ratio(), 3) + " [" + fixed(li.ratio_low(), 3) + ", " + fixed(li.ratio_high(), 3) + "] " + v;
 }
 
 report::Json JudgedComparison::json() const {
-  return {{"ratio_median", c.ratio.median}, {"ci95_low", c.ratio.low}, {"ci95_high", c.ratio.high},
-          {"pairs", c.pairs}, {"effect_pct", c.effect_pct},
-          {"verdict", reliable() ? stats::to_string(c.verdict) : "unreliable"},
-          {"verdict_if_reliable", stats::to_string(c.verdict)}, {"reliable", reliable()},
-          {"noise_reason", unreliable_because}};
+  const measure::LogInterval& li = c.chosen();
+  auto interval = [](const measure::LogInterval& x) -> report::Json {
+    if (!x.valid) return nullptr;
+    return {{"ratio", x.ratio()}, {"ci95_low", x.ratio_low()}, {"ci95_high", x.ratio_high()}, {"sd_per_round", x.sd}};
+  };
+  auto number = [&](double v) { return li.valid ? report::Json(v) : report::Json(nullptr); };  // no interval: null
+  return {{"ratio", number(li.ratio())}, {"ci95_low", number(li.ratio_low())}, {"ci95_high", number(li.ratio_high())},
+          {"pairs", c.rounds}, {"effect_pct", number(li.effect_pct())},
+          {"verdict", reliable() ? measure::to_string(c.decision) : "unreliable"},
+          {"verdict_if_reliable", measure::to_string(c.decision)}, {"reliable", reliable()},
+          {"noise_reason", unreliable_because}, {"margin_pct", 100 * c.margin},
+          {"interval", c.uses_adjusted ? "probe-adjusted t" : "raw t"}, {"raw", interval(c.raw)},
+          {"adjusted", interval(c.adjusted)}, {"variance_removed", c.variance_removed}};
 }
 
-MeasuredNoise::MeasuredNoise(const MeasurementNoise& sampled, const noise::Thresholds& thresholds)
-    : sampled_(sampled), thresholds_(thresholds), serial_spread_(noise::spread_of(sampled.serial_path_ms)),
+MeasuredNoise::MeasuredNoise(const MeasurementNoise& sampled, const noise::Thresholds& thresholds,
+                             const measure::Settings& settings)
+    : sampled_(sampled), thresholds_(thresholds), settings_(settings),
+      serial_spread_(noise::spread_of(sampled.serial_path_ms)),
       diagnosis_(noise::diagnose_spread(sampled.serial_path_ms, sampled.serial_probe, thresholds.spread,
                                         sampled.serial_passes)) {
   if (const auto x = noise::assess(sampled_.during, thresholds_); x.busy) {
     warnings_.push_back("during the measurement: " + x.reason);
   }
-  if (serial_spread_ > thresholds_.spread) {
-    warnings_.push_back("the serial loop's repeats spread by " + fixed(100 * serial_spread_, 1) +
-                        " % (max/min - 1; threshold " + fixed(100 * thresholds_.spread, 1) + " %); " + diagnosis_.line);
-  }
 }
 
 JudgedComparison MeasuredNoise::judge(const MeasuredRun& candidate, const MeasuredRun& reference) const {
-  JudgedComparison j{stats::compare_paired(candidate.path_ms, reference.path_ms), {}};
+  JudgedComparison j{measure::analyze_pairs(measure::pair_rounds(candidate.rounds, reference.rounds), settings_), {}};
   if (!warnings_.empty()) {
     j.unreliable_because = warnings_.front();
   } else if (const auto x = noise::assess(candidate.usage, thresholds_); x.busy) {
@@ -53,10 +61,10 @@ JudgedComparison MeasuredNoise::judge(const MeasuredRun& candidate, const Measur
 
 std::string MeasuredNoise::line() const {
   return "Noise monitor (/proc): other processes " + fixed(100 * sampled_.during.other_share(), 1) + " %, steal " +
-         fixed(100 * sampled_.during.steal_share(), 1) + " % of the machine during the measurement; the serial "
-         "loop's repeats spread " + fixed(100 * serial_spread_, 1) + " % (thresholds: " +
+         fixed(100 * sampled_.during.steal_share(), 1) + " % of the machine during the measurement (thresholds: " +
          fixed(100 * thresholds_.other_share, 0) + " % busy, " + fixed(100 * thresholds_.steal_share, 0) +
-         " % steal, " + fixed(100 * thresholds_.spread, 0) + " % spread)" +
+         " % steal); single serial passes spread " + fixed(100 * serial_spread_, 1) + " % (context only: the "
+         "verdicts rest on the paired rounds; " + diagnosis_.line + ")" +
          (warnings_.empty() ? std::string(".") : ": every verdict of it is unreliable.");
 }
 
@@ -85,7 +93,7 @@ void VerdictTally::add(const JudgedComparison& j) {
 
 std::string VerdictTally::warning() const {
   if (unreliable == 0) return {};
-  std::string w = "WARNING: noisy machine: " + std::to_string(unreliable) + " of " + std::to_string(verdicts) +
+  std::string w = "WARNING: " + std::to_string(unreliable) + " of " + std::to_string(verdicts) +
                   " measured verdicts are marked unreliable. Reasons:\n";
   for (const std::string& r : reasons) w += "  - " + r + "\n";
   return w;

@@ -1,39 +1,43 @@
-// measured_noise.hpp — may a measured comparison of frontsteal-paper be believed? The main job's noise rules
-// (schedulers/noise_monitor.hpp) applied to the paper's measured rows (Table 1, Fig. 8).
+// measured_noise.hpp — may a measured comparison of frontsteal-paper be believed, and what does it say? The main
+// job's rules (measure/paired_analysis.hpp, measure/noise_monitor.hpp) applied to the paper's measured rows
+// (Table 1, Fig. 8).
 //
-// A comparison is a paired one (core/paired_comparison.hpp: per repeat, the candidate's path time over the
-// reference's; median, 95 % bootstrap interval, verdict). It is *unreliable* when, while it was measured,
-// other processes or the hypervisor took more than the thresholds' share of the machine — during the whole
-// measurement (then every comparison of it), or during the paths of either of its two cells — or when the
-// serial loop's repeats spread more than the threshold (a machine whose speed drifts). An unreliable
-// comparison keeps its numbers, and its verdict reads "unreliable (...)"; the run prints a warning.
+// A comparison is a paired one over rounds (workload.hpp: every cell and the serial loop once per round, random
+// order): the per-round log-ratio of the candidate's path time to the reference's, its Huber estimate with a
+// Student-t 95 % interval (adjusted for the CPU speed probe when the rounds allow it: 4 or more), and a verdict
+// against the margin (faster / slower /
+// equivalent / inconclusive). It is *unreliable* only when other processes or the hypervisor took more than the
+// thresholds' share of the machine — during the whole measurement (then every comparison of it), or during the
+// paths of either of its two cells. The spread of single serial passes is reported, not used: the paired rounds
+// carry the verdict. An unreliable comparison keeps its numbers, and its verdict reads "unreliable (...)".
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "core/paired_comparison.hpp"
+#include "measure/cpu_speed_probe.hpp"
+#include "measure/noise_monitor.hpp"
+#include "measure/paired_analysis.hpp"
 #include "papers/workload.hpp"
 #include "reporting/json.hpp"
-#include "schedulers/cpu_speed_probe.hpp"
-#include "schedulers/noise_monitor.hpp"
 
 namespace frontsteal::papers {
 
 struct JudgedComparison {
-  stats::Comparison c;
+  measure::PairedResult c;
   std::string unreliable_because;  // empty: reliable
   bool reliable() const noexcept { return unreliable_because.empty(); }
-  // "0.912 [0.880, 0.950] ahead -8.8 %", or "... unreliable (ahead -8.8 %)".
+  // "0.912 [0.880, 0.950] faster -8.8 %", or "... unreliable (faster -8.8 %)".
   std::string text() const;
-  // ratio_median, ci95_low, ci95_high, pairs, effect_pct, verdict ("unreliable" when it is), and
-  // verdict_if_reliable, reliable, noise_reason.
+  // ratio, ci95_low, ci95_high, pairs, effect_pct, verdict ("unreliable" when it is), verdict_if_reliable,
+  // reliable, noise_reason, and the raw and adjusted intervals.
   report::Json json() const;
 };
 
 class MeasuredNoise {
  public:
-  explicit MeasuredNoise(const MeasurementNoise& sampled, const noise::Thresholds& thresholds = {});
+  explicit MeasuredNoise(const MeasurementNoise& sampled, const noise::Thresholds& thresholds = {},
+                         const measure::Settings& settings = {});
 
   // Candidate against reference, paired by repeat, judged by the noise while the two ran.
   JudgedComparison judge(const MeasuredRun& candidate, const MeasuredRun& reference) const;
@@ -46,6 +50,7 @@ class MeasuredNoise {
  private:
   MeasurementNoise sampled_;
   noise::Thresholds thresholds_;
+  measure::Settings settings_;
   double serial_spread_ = 0;
   noise::SpreadDiagnosis diagnosis_;  // the CPU speed probe against the serial spread
   std::vector<std::string> warnings_;
@@ -56,7 +61,7 @@ struct VerdictTally {
   std::size_t verdicts = 0, unreliable = 0;
   std::vector<std::string> reasons;  // distinct, in order
   void add(const JudgedComparison& j);
-  // "WARNING: noisy machine: k of n measured verdicts are unreliable. Reasons: ..." (empty when none).
+  // "WARNING: k of n measured verdicts are unreliable. Reasons: ..." (empty when none).
   std::string warning() const;
 };
 

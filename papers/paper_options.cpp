@@ -53,7 +53,11 @@ Options parse_options(int argc, char** argv, const std::vector<SubcommandSummary
   cli.option("--calibration", o.calibration, "use these costs instead of running the microbenchmarks (written by `calibrate`)")
       ->type_name("FILE");
   cli.option("--frames", o.frames, "frames along the camera path (orbit, then zoom)")->type_name("F")->check(CLI::Range(1, 100000));
-  cli.option("--repeats", o.repeats, "interleaved repeats of each measured run; medians")->type_name("R")->check(CLI::Range(1, 1000));
+  cli.option("--repeats", o.repeats,
+             "rounds of each measured run: every scheduler, P and the serial loop once per round, in a fresh random "
+             "order; comparisons from the per-round log-ratios (Huber estimate, t interval; probe-adjusted from 4 "
+             "rounds on), medians for the frames/s columns")
+      ->type_name("R")->check(CLI::Range(1, 1000));
   cli.option("--passes", o.passes, "serial passes a trace's per-surface medians come from")->type_name("K")->check(CLI::Range(1, 100));
   cli.option("--max-p", o.max_p, "largest simulated processor count")->type_name("P")->check(CLI::Range(WorkerId{1}, WorkerId{1024}));
   cli.option("--updates", o.updates, "table2: pusher updates per scene")->type_name("U")->check(CLI::Range(1, 1000000));

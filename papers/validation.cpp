@@ -6,7 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "core/machine_info.hpp"
+#include "measure/machine_info.hpp"
 #include "reporting/json.hpp"
 #include "schedulers/static_assignment.hpp"
 

@@ -5,7 +5,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "core/machine_info.hpp"
+#include "measure/machine_info.hpp"
 #include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
 #include "reporting/table.hpp"

@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "core/execution_counter.hpp"
-#include "schedulers/cpu_speed_probe.hpp"
+#include "measure/cpu_speed_probe.hpp"
 #include "schedulers/registry.hpp"
 
 namespace frontsteal::papers {
@@ -137,53 +137,65 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
   ExecutionCounter runs(n);
   std::vector<double> serial_path, serial_probe;
   std::vector<noise::PassUsage> serial_passes;
+  measure::ArmRounds serial_rounds;
   const noise::ProcSample measure_start = noise::sample_now();
-  for (int r = 0; r < o.repeats; ++r) {
-    {
-      const double probe_before = noise::probe_ns_per_million_steps();
-      const noise::PassMeter meter;
-      const auto t0 = Clock::now();
-      for (int f = 0; f < wl.frames(); ++f) {
-        for (ItemId id = 0; id < n; ++id) wl.tessellate(f, id, 0);
-      }
-      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-      serial_passes.push_back(meter.stop());  // before the push_backs below can allocate
-      serial_path.push_back(ms);
-      // The smaller of the two: a time slice lost during one probe inflates it, not the core's speed.
-      serial_probe.push_back(std::min(probe_before, noise::probe_ns_per_million_steps()));
+  auto run_serial = [&](int r, double probe) {
+    const noise::PassMeter meter;
+    const auto t0 = Clock::now();
+    for (int f = 0; f < wl.frames(); ++f) {
+      for (ItemId id = 0; id < n; ++id) wl.tessellate(f, id, 0);
     }
-    for (Cell& c : cells) {
-      double total = 0;
-      const noise::ProcSample before = noise::sample_now();
-      for (int f = 0; f < wl.frames(); ++f) {
-        auto item = [&](ItemId id, WorkerId w) {
-          runs.record(id);
-          wl.tessellate(f, id, w);
-        };
-        const FrameStats& st = c.instance->run_frame(item);
-        total += static_cast<double>(st.wall_ns) / 1e6;
-        const WorkerFrameStats tot = st.totals();
-        c.busy += static_cast<double>(tot.busy_ns);
-        c.cpu += static_cast<double>(tot.cpu_ns);
-        c.available += static_cast<double>(st.wall_ns) * static_cast<double>(st.workers.size());
-        c.imbalance_sum += st.imbalance();
-        ++c.frames;
-        c.run.steals += tot.steals_succeeded;
-        c.run.lock_waits += tot.lock_waits;
-        const ExecutionAudit audit = runs.audit_and_reset();
-        if (!audit.exactly_once() || wl.frame_triangles() != reference[f]) {
-          throw std::runtime_error(c.run.scheduler + " P=" + std::to_string(c.run.workers) + " frame " +
-                                   std::to_string(f) + ": audit failed (a surface not run exactly once, or the "
-                                   "triangle count differs from the serial loop's)");
-        }
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    serial_passes.push_back(meter.stop());  // before the push_backs below can allocate
+    serial_path.push_back(ms);
+    serial_probe.push_back(probe);
+    serial_rounds.add(static_cast<std::size_t>(r), ms, probe, 0);
+  };
+  auto run_cell = [&](Cell& c, int r, double probe) {
+    double total = 0;
+    const noise::ProcSample before = noise::sample_now();
+    for (int f = 0; f < wl.frames(); ++f) {
+      auto item = [&](ItemId id, WorkerId w) {
+        runs.record(id);
+        wl.tessellate(f, id, w);
+      };
+      const auto t0 = Clock::now();
+      const FrameStats& st = c.instance->run_frame(item);
+      total += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      const WorkerFrameStats tot = st.totals();
+      c.busy += static_cast<double>(tot.busy_ns);
+      c.cpu += static_cast<double>(tot.cpu_ns);
+      c.available += static_cast<double>(st.wall_ns) * static_cast<double>(st.workers.size());
+      c.imbalance_sum += st.imbalance();
+      ++c.frames;
+      c.run.steals += tot.steals_succeeded;
+      c.run.lock_waits += tot.lock_waits;
+      const ExecutionAudit audit = runs.audit_and_reset();
+      if (!audit.exactly_once() || wl.frame_triangles() != reference[f]) {
+        throw std::runtime_error(c.run.scheduler + " P=" + std::to_string(c.run.workers) + " frame " +
+                                 std::to_string(f) + ": audit failed (a surface not run exactly once, or the "
+                                 "triangle count differs from the serial loop's)");
       }
-      c.run.usage += noise::usage_between(before, noise::sample_now());
-      c.run.path_ms.push_back(total);
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));  // let library runtimes settle
-      if (o.progress) {
-        o.progress("repeat " + std::to_string(r + 1) + "/" + std::to_string(o.repeats) + " P=" +
-                   std::to_string(c.run.workers) + " " + c.run.scheduler + ": " + std::to_string(total).substr(0, 6) +
-                   " ms");
+    }
+    c.run.usage += noise::usage_between(before, noise::sample_now());
+    c.run.path_ms.push_back(total);
+    c.run.rounds.add(static_cast<std::size_t>(r), total, probe, 0);
+    if (o.progress) {
+      o.progress("repeat " + std::to_string(r + 1) + "/" + std::to_string(o.repeats) + " P=" +
+                 std::to_string(c.run.workers) + " " + c.run.scheduler + ": " + std::to_string(total).substr(0, 6) +
+                 " ms");
+    }
+  };
+  for (int r = 0; r < o.repeats; ++r) {
+    // Arm 0 is the serial loop, arm k the k-th cell; before each, a pause for library runtimes to settle, then
+    // the probe (the covariate of measure/paired_analysis.hpp), before the arm so that it cannot depend on it.
+    for (std::size_t arm : measure::round_order(cells.size() + 1, o.seed, static_cast<std::size_t>(r), o.order)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      const double probe = noise::probe_ns_per_million_steps();
+      if (arm == 0) {
+        run_serial(r, probe);
+      } else {
+        run_cell(cells[arm - 1], r, probe);
       }
     }
   }
@@ -192,6 +204,7 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
     noise->serial_path_ms = serial_path;
     noise->serial_probe = serial_probe;
     noise->serial_passes = serial_passes;
+    noise->serial_rounds = serial_rounds;
   }
   std::vector<MeasuredRun> out;
   for (Cell& c : cells) {

@@ -12,10 +12,12 @@
 #include <vector>
 
 #include "core/id_range.hpp"
-#include "core/machine_info.hpp"
+#include "measure/machine_info.hpp"
+#include "measure/noise_monitor.hpp"
+#include "measure/paired_analysis.hpp"
+#include "measure/pass_usage.hpp"
+#include "measure/round_order.hpp"
 #include "papers/cost_trace.hpp"
-#include "schedulers/noise_monitor.hpp"
-#include "schedulers/pass_usage.hpp"
 #include "schedulers/scheduler.hpp"
 #include "schedulers/static_scheduler.hpp"
 #include "tessellate/path_scene.hpp"
@@ -63,7 +65,8 @@ CostTrace record_cost_trace(PathWorkload& workload, int passes, const std::strin
 struct MeasuredRun {
   std::string scheduler;
   WorkerId workers = 0;
-  std::vector<double> path_ms;    // per repeat
+  std::vector<double> path_ms;    // per repeat, the harness's clock around every run_frame
+  measure::ArmRounds rounds;      // per repeat (a round): path time, the CPU speed probe just before it, block 0
   double median_path_ms = 0;
   double frames_per_s = 0;        // frames / median path time
   double utilization_pct = 0;     // Σ busy / Σ (wall × P) over every frame of every repeat
@@ -78,8 +81,9 @@ struct MeasuredRun {
 struct MeasureOptions {
   std::vector<std::string> schedulers;  // registry names
   std::vector<WorkerId> threads;
-  int repeats = 3;
+  int repeats = 3;  // rounds: every cell and the serial loop once per round, in a fresh random order
   std::uint64_t seed = 1;
+  measure::OrderKind order = measure::OrderKind::kRandom;
   std::function<void(const std::string&)> progress;
 };
 
@@ -87,17 +91,20 @@ struct MeasureOptions {
 struct MeasurementNoise {
   noise::Usage during;                 // from the first repeat's start to the last repeat's end
   std::vector<double> serial_path_ms;  // the serial loop's path time, per repeat: their spread is noise too
-  std::vector<double> serial_probe;    // the CPU speed probe around each serial pass (schedulers/cpu_speed_probe.hpp)
-  std::vector<noise::PassUsage> serial_passes;  // what each serial pass's thread did (schedulers/pass_usage.hpp)
+  std::vector<double> serial_probe;    // the CPU speed probe around each serial pass (measure/cpu_speed_probe.hpp)
+  std::vector<noise::PassUsage> serial_passes;  // what each serial pass's thread did (measure/pass_usage.hpp)
+  measure::ArmRounds serial_rounds;             // the serial loop per round, as MeasuredRun::rounds
 };
 
-// Interleaved repeats (repeat r of every cell before repeat r+1 of any). Also returns the serial loop's
+// Rounds (measure/round_order.hpp): every cell and the serial loop once per round, in a fresh random order, each
+// timed by this function's clock (the schedulers' own wall_ns are not used), the CPU speed probe taken just
+// before each. Also returns the serial loop's
 // median path time in *serial_ms, and the noise monitor's samples in *noise, when given. Throws
 // std::runtime_error on an audit failure.
 std::vector<MeasuredRun> measure_schedulers(PathWorkload& workload, const MeasureOptions& options,
                                             double* serial_ms = nullptr, MeasurementNoise* noise = nullptr);
 
-using frontsteal::cpu_model;  // core/machine_info.hpp
+using frontsteal::cpu_model;  // measure/machine_info.hpp
 using frontsteal::median;
 
 }  // namespace frontsteal::papers

@@ -3,8 +3,9 @@
 // A scene (default: the generated 15,906-surface plant, the size of the paper's largest Fig. 8 model) is
 // tessellated along a deterministic camera path — half an orbit of the whole model, half a zoom into a small
 // corner region, where round robin becomes badly imbalanced (paper §3) — by a serial loop (T1) and by every
-// scheduler at P = 1 … cores and oversubscribed. Repeats are interleaved (repeat r of every scheduler runs
-// before repeat r+1 of any), so slow drifts of a noisy machine spread over all of them. Every frame is
+// scheduler at P = 1 … cores and oversubscribed, in rounds: every arm once per segment of the path, in a fresh
+// random order each round (main_job_run.hpp); the verdicts come from the per-round paired log-ratios against a
+// margin (measure/paired_analysis.hpp). Every frame is
 // audited: each surface ran exactly once, the frame's triangle count equals the serial loop's, and every
 // surface passed the tessellation's own audit (trimmed pieces tiled exactly, area equal to the trim loops').
 //
@@ -14,12 +15,12 @@
 #include <algorithm>
 #include <string>
 
+#include "measure/noise_monitor.hpp"
 #include "schedulers/main_job_options.hpp"
 #include "schedulers/main_job_progress.hpp"
 #include "schedulers/main_job_report.hpp"
 #include "schedulers/main_job_run.hpp"
 #include "schedulers/main_job_workload.hpp"
-#include "schedulers/noise_monitor.hpp"
 
 namespace mj = frontsteal::main_job;
 namespace nz = frontsteal::noise;
@@ -37,24 +38,25 @@ int main(int argc, char** argv) {
   mj::Progress progress(o.quiet, mj::progress_steps(o));
   const mj::WarmUp warm = mj::warm_up(o, scene.wl, tess);
   const bool auto_repeats = o.repeats == 0;
-  std::string repeats_note = "set by --repeats";
-  if (auto_repeats) {
-    repeats_note = mj::choose_repeats(o, warm.seconds, cores);
-    progress.set_total(mj::progress_steps(o));
-  }
-  progress.step("serial warm-up pass (reference triangle counts); " + std::to_string(o.repeats) + " repeats (" +
-                repeats_note + ")");
+  std::string repeats_note = auto_repeats ? "auto" : "set by --repeats";
+  progress.set_total(mj::progress_steps(o));
+  progress.step("serial warm-up pass (reference triangle counts, " + std::to_string(static_cast<int>(warm.seconds * 1000)) +
+                " ms); " + (auto_repeats ? std::string("a pilot of ") + std::to_string(mj::kPilotPasses) +
+                                               " passes sizes the run"
+                                         : std::to_string(o.repeats) + " passes") +
+                "; a pass is " + std::to_string(mj::segments(o)) + " segments x " + std::to_string(mj::distinct_p(o)) +
+                " P = " + std::to_string(mj::segments(o) * mj::distinct_p(o)) + " rounds");
 
-  // The schedulers, the co-runner, the interleaved rounds; the children and the co-runner are reaped by
-  // `run` on every way out of main.
-  mj::Measurement run(o, scene.wl, tess);
+  // The schedulers, the co-runner, the rounds; the children and the co-runner are reaped by `run` on every way
+  // out of main.
+  mj::Measurement run(o, scene.wl, tess, warm);
   if (!run.start_cells(scene.hints) || !run.start_interference()) return 1;
   if (!run.run_rounds(progress, auto_repeats, repeats_note)) return 1;
   run.finish();
 
   const mj::Measured measured{o, cores, scene.wl, scene.wl.dense, warm.item_ns, warm.item_estimate,
                               run.serial_path_ms(), run.serial_frame_ms(), run.serial_usage(), run.serial_probe(),
-                              run.serial_pass_usage(), run.cells(),
+                              run.serial_pass_usage(), run.serial_rounds(), run.cells(),
                               run.not_available(), at_start, run.measure_start(), run.measure_end(), run.at_end(),
                               repeats_note, run.co_runner_cpu()};
   return mj::write_results(measured, progress.seconds());

@@ -1,7 +1,8 @@
 // llvm_openmp_child.cpp — the parent's side of openmp-static-steal (llvm_openmp_child.hpp): spawn, protocol,
 // audit, reaping.
 #include "schedulers/llvm_openmp_child.hpp"
-#include "schedulers/proc_file.hpp"
+
+#include "measure/proc_file.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -234,10 +235,12 @@ std::string LlvmOpenMpChild::read_line() {
   }
 }
 
-std::vector<ChildFrame> LlvmOpenMpChild::run_path() {
-  send("path\n");
+std::vector<ChildFrame> LlvmOpenMpChild::run_path() { return run_frames(0, frames_); }
+
+std::vector<ChildFrame> LlvmOpenMpChild::run_frames(int first, int last) {
+  send("frames " + std::to_string(first) + " " + std::to_string(last) + "\n");
   std::vector<ChildFrame> frames;
-  frames.reserve(static_cast<std::size_t>(frames_));
+  frames.reserve(static_cast<std::size_t>(last - first));
   std::vector<std::uint32_t> runs;
   auto bad = [](const std::string& line, const std::string& why) {
     return std::runtime_error("protocol: " + why + " in '" + line.substr(0, 200) + "'");
@@ -254,7 +257,7 @@ std::vector<ChildFrame> LlvmOpenMpChild::run_path() {
     }
     ChildFrame cf;
     int f = -1;
-    if (!parse_int(t[1], f) || f != static_cast<int>(frames.size()) || !parse_int(t[2], cf.stats.wall_ns) ||
+    if (!parse_int(t[1], f) || f != first + static_cast<int>(frames.size()) || !parse_int(t[2], cf.stats.wall_ns) ||
         !parse_int(t[3], cf.triangles) || !parse_int(t[4], cf.inconsistent)) {
       throw bad(line, "malformed frame header");
     }
@@ -280,8 +283,9 @@ std::vector<ChildFrame> LlvmOpenMpChild::run_path() {
     cf.audit = audit_runs(runs);
     frames.push_back(std::move(cf));
   }
-  if (static_cast<int>(frames.size()) != frames_) {
-    throw std::runtime_error("the child ran " + std::to_string(frames.size()) + " frames, expected " + std::to_string(frames_));
+  if (static_cast<int>(frames.size()) != last - first) {
+    throw std::runtime_error("the child ran " + std::to_string(frames.size()) + " frames, expected " +
+                             std::to_string(last - first));
   }
   return frames;
 }

@@ -81,6 +81,8 @@ class LlvmOpenMpChild {
   // Runs the whole camera path once in the child; one entry per frame. Throws std::runtime_error when the
   // child fails, stops answering, or breaks the protocol.
   std::vector<ChildFrame> run_path();
+  // Runs frames [first, last) of the path in the child (one round's segment); one entry per frame.
+  std::vector<ChildFrame> run_frames(int first, int last);
 
   const std::string& ready_line() const noexcept { return ready_; }
   pid_t pid() const noexcept { return pid_; }

@@ -5,10 +5,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <sstream>
 
-#include "core/machine_info.hpp"
+#include "measure/machine_info.hpp"
 #include "reporting/table.hpp"
 
 namespace frontsteal::main_job {
@@ -25,19 +26,54 @@ std::string fixed(double v, int digits) { return report::fixed_text(v, digits); 
 }  // namespace
 
 std::string ShownComparison::verdict_text() const {
-  std::string v = st::to_string(c.verdict);
-  if (c.verdict != st::Verdict::kTooFewRepeats) v += " " + std::string(c.effect_pct >= 0 ? "+" : "") + fixed(c.effect_pct, 1) + " %";
+  std::string v = measure::to_string(c.decision);
+  if (c.chosen().valid) v += " " + std::string(c.chosen().effect_pct() >= 0 ? "+" : "") + fixed(c.chosen().effect_pct(), 1) + " %";
   return reliable ? v : "unreliable (" + v + ")";
 }
 
 std::string ShownComparison::interval_text() const {
-  return fixed(c.ratio.median, 3) + " [" + fixed(c.ratio.low, 3) + ", " + fixed(c.ratio.high, 3) + "]";
+  const measure::LogInterval& li = c.chosen();
+  if (!li.valid) return "-";
+  return fixed(li.ratio(), 3) + " [" + fixed(li.ratio_low(), 3) + ", " + fixed(li.ratio_high(), 3) + "]";
 }
 
+namespace {
+
+report::Json interval_json(const measure::LogInterval& li) {
+  if (!li.valid) return nullptr;
+  return {{"ratio", li.ratio()}, {"ci95_low", li.ratio_low()}, {"ci95_high", li.ratio_high()},
+          {"log_ratio", li.estimate}, {"sd_per_round", li.sd}, {"se", li.se}, {"df", li.df}};
+}
+
+double finite_or(double v, double otherwise) { return std::isfinite(v) ? v : otherwise; }
+
+}  // namespace
+
 report::Json ShownComparison::json() const {
-  return {{"ratio_median", c.ratio.median}, {"ci95_low", c.ratio.low}, {"ci95_high", c.ratio.high}, {"pairs", c.pairs},
-          {"effect_pct", c.effect_pct}, {"verdict", reliable ? st::to_string(c.verdict) : "unreliable"},
-          {"verdict_if_reliable", st::to_string(c.verdict)}, {"reliable", reliable}};
+  const measure::LogInterval& li = c.chosen();
+  auto number = [&](double v) { return li.valid ? report::Json(v) : report::Json(nullptr); };  // no interval: null
+  return {{"ratio", number(li.ratio())}, {"ci95_low", number(li.ratio_low())}, {"ci95_high", number(li.ratio_high())},
+          {"pairs", c.rounds}, {"rounds", c.rounds}, {"blocks", c.blocks},
+          {"effect_pct", number(li.effect_pct())}, {"verdict", reliable ? measure::to_string(c.decision) : "unreliable"},
+          {"verdict_if_reliable", measure::to_string(c.decision)}, {"reliable", reliable},
+          {"unreliable_reason", noise_reason}, {"margin_pct", 100 * c.margin}, {"differs", c.differs},
+          {"interval", c.uses_adjusted ? "probe-adjusted t" : "raw t"}, {"raw", interval_json(c.raw)},
+          {"adjusted", interval_json(c.adjusted)}, {"probe_slope", c.probe_slope},
+          {"variance_removed", c.variance_removed},
+          {"rounds_needed", c.decision == measure::Decision::kInconclusive ? report::Json(finite_or(c.rounds_needed, -1))
+                                                                            : report::Json(nullptr)},
+          {"mde80_pct", number(c.mde_pct)}};
+}
+
+bool CalibrationRow::found() const {
+  const measure::LogInterval& li = result.c.chosen();
+  return li.valid && (nominal > 0 ? li.low > 0 : nominal < 0 ? li.high < 0 : false);
+}
+bool CalibrationRow::covered() const { return result.c.chosen().valid && result.c.chosen().contains(std::log1p(realized)); }
+bool CalibrationRow::right() const {
+  const measure::Decision d = result.c.decision;
+  return nominal > 0 ? d == measure::Decision::kSlower
+                     : nominal < 0 ? d == measure::Decision::kFaster : d == measure::Decision::kEquivalent;
 }
 
 std::vector<double> frame_medians(const std::vector<std::vector<double>>& per_repeat, int frames) {
@@ -52,9 +88,10 @@ std::vector<double> frame_medians(const std::vector<std::vector<double>>& per_re
 
 namespace {
 
-// Noise: the machine before (loading and warm-up), during (every measured path, added up) and after; and
-// the spread of the serial loop's repeats. Each makes every verdict unreliable; a busy machine during one
-// cell's paths (or its reference's) makes that comparison unreliable.
+// What may invalidate a verdict, and only that: another process (or the hypervisor) took the machine while the
+// pair's arms ran (their noise-monitor windows added up), an audit failed in either arm, or the co-runner did
+// not run as asked. The machine before and after the measurement, and the spread of single serial passes, are
+// reported as context: the paired rounds are what the verdicts rest on.
 void judge_rows(const Measured& m, Analysis& a) {
   const Options& o = m.o;
   a.t1_ms = median(m.serial_path_ms);
@@ -64,32 +101,46 @@ void judge_rows(const Measured& m, Analysis& a) {
   nz::Usage serial_total;
   for (const nz::Usage& u : m.serial_usage) serial_total += u;
   a.serial_spread = nz::spread_of(m.serial_path_ms);
-  if (const auto x = nz::assess(a.before_usage, o.noise); x.busy) a.noise_warnings.push_back("before the measurement: " + x.reason);
-  if (const auto x = nz::assess(a.during_usage, o.noise); x.busy) a.noise_warnings.push_back("during the measurement: " + x.reason);
-  if (const auto x = nz::assess(a.after_usage, o.noise); x.busy) a.noise_warnings.push_back("after the measurement: " + x.reason);
+  if (const auto x = nz::assess(a.before_usage, o.noise); x.busy) a.notes.push_back("before the measurement: " + x.reason);
+  if (const auto x = nz::assess(a.after_usage, o.noise); x.busy) a.notes.push_back("after the measurement: " + x.reason);
   a.spread_diagnosis = nz::diagnose_spread(m.serial_path_ms, m.serial_probe, o.noise.spread, m.serial_pass_usage);
-  if (a.serial_spread > o.noise.spread) {
-    a.noise_warnings.push_back("the serial loop's repeats spread by " + fixed(100 * a.serial_spread, 1) +
-                               " % (max/min - 1; threshold " + fixed(100 * o.noise.spread, 1) + " %); " +
-                               a.spread_diagnosis.line);
+  if (o.interference) {
+    nz::Usage cells_usage;
+    for (const Cell& c : m.cells) cells_usage += c.usage;
+    const double ticks_per_s = static_cast<double>(sysconf(_SC_CLK_TCK));
+    const double share =
+        cells_usage.wall_s > 0 ? static_cast<double>(cells_usage.known_ticks) / (cells_usage.wall_s * ticks_per_s) : 0;
+    if (share < 0.5 * o.interference->duty) {
+      a.noise_warnings.push_back("the interference co-runner used " + fixed(100 * share, 1) + " % of a core while the "
+                                 "schedulers ran, less than half of the " + fixed(100 * o.interference->duty, 0) +
+                                 " % asked: the interference was not what the run says");
+    }
   }
-  auto judge = [&](const std::vector<double>& candidate, const std::vector<double>& reference, nz::Usage usage) {
+  const measure::Settings settings{.margin = o.margin, .confidence = 0.95, .adjust_for_probe = o.adjust, .estimator = o.estimator};
+  auto judge = [&](const Cell& cand, const measure::ArmRounds& reference, nz::Usage usage, bool reference_failed) {
     ShownComparison sc_;
-    sc_.c = st::compare_paired(candidate, reference);
+    sc_.c = measure::analyze_pairs(measure::pair_rounds(cand.rounds, reference), settings);
     const nz::Assessment x = nz::assess(usage, o.noise);
-    if (!a.noise_warnings.empty() || x.busy) {
+    if (!a.noise_warnings.empty()) {
       sc_.reliable = false;
-      sc_.noise_reason = x.busy ? x.reason : a.noise_warnings.front();
+      sc_.noise_reason = a.noise_warnings.front();
+    } else if (x.busy) {
+      sc_.reliable = false;
+      sc_.noise_reason = "while this pair ran: " + x.reason;
+    } else if (cand.failed() || reference_failed) {
+      sc_.reliable = false;
+      sc_.noise_reason = "an audit failed in this pair";
     }
     return sc_;
   };
-  auto queue_cell = [&](WorkerId p) -> const Cell* {
+  auto base_cell = [&](const std::string& name, WorkerId p) -> const Cell* {
     for (const Cell& q : m.cells) {
-      if (q.scheduler == "queue-mutex" && q.workers == p) return &q;
+      if (q.role == ArmRole::kScheduler && q.scheduler == name && q.workers == p) return &q;
     }
     return nullptr;
   };
   for (const Cell& c : m.cells) {
+    if (c.role != ArmRole::kScheduler) continue;
     Row row{};
     row.cell = &c;
     row.path_ms = median(c.path_ms);
@@ -107,19 +158,134 @@ void judge_rows(const Measured& m, Analysis& a) {
     row.spread_pct = 100.0 * nz::spread_of(c.path_ms);
     nz::Usage with_serial = c.usage;
     with_serial += serial_total;
-    row.vs_serial = judge(c.path_ms, m.serial_path_ms, with_serial);
+    row.vs_serial = judge(c, m.serial_rounds, with_serial, a.serial_inconsistencies > 0);
     ++a.verdicts;
     if (!row.vs_serial.reliable) ++a.unreliable;
-    if (const Cell* q = queue_cell(c.workers); q && q != &c) {
+    if (const Cell* q = base_cell("queue-mutex", c.workers); q && q != &c) {
       nz::Usage with_queue = c.usage;
       with_queue += q->usage;
-      row.vs_queue = judge(c.path_ms, q->path_ms, with_queue);
+      row.vs_queue = judge(c, q->rounds, with_queue, q->failed());
       ++a.verdicts;
       if (!row.vs_queue->reliable) ++a.unreliable;
     }
     a.rows.push_back(row);
     if (c.failed()) a.problems = true;
   }
+  // The calibration arms against their base; the planted speed-up is the base against its +5 % arm.
+  for (const Cell& c : m.cells) {
+    if (c.role == ArmRole::kScheduler) continue;
+    const Cell* base = base_cell(c.scheduler, c.workers);
+    if (!base) continue;
+    double log_sum = 0;
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < c.rounds.size(); ++k) {
+      const double t = c.rounds.time[k], planted = c.round_planted_ms[k];
+      if (t > planted && planted >= 0) {
+        log_sum += std::log(t / (t - planted));
+        ++n;
+      }
+    }
+    const double realized = n ? std::expm1(log_sum / static_cast<double>(n)) : 0.0;
+    nz::Usage usage = c.usage;
+    usage += base->usage;
+    CalibrationRow row{c.label, c.workers, c.planted, c.role == ArmRole::kTwin ? 0.0 : realized,
+                       judge(c, base->rounds, usage, base->failed()), &c.rounds, &base->rounds};
+    a.calibration.push_back(row);
+    if (c.failed()) a.problems = true;
+    if (std::fabs(c.planted - 0.05) < 1e-9) {
+      CalibrationRow speedup{base->scheduler + " against " + c.label + " (planted speed-up)", c.workers, -0.05,
+                             1.0 / (1.0 + realized) - 1.0, ShownComparison{}, &base->rounds, &c.rounds};
+      speedup.result.c = measure::analyze_pairs(measure::pair_rounds(base->rounds, c.rounds), settings);
+      speedup.result.reliable = row.result.reliable;
+      speedup.result.noise_reason = row.result.noise_reason;
+      a.calibration.push_back(speedup);
+    }
+  }
+}
+
+// "faster than queue-mutex (time -11.6 % [-15.0, -8.1])" and the like: one clause of the short answer.
+std::string answer_clause(const ShownComparison& s, const std::string& other, double margin) {
+  const measure::LogInterval& li = s.c.chosen();
+  const std::string numbers = "time " + std::string(li.effect_pct() >= 0 ? "+" : "") + fixed(li.effect_pct(), 1) +
+                              " % [" + fixed(100 * (li.ratio_low() - 1), 1) + ", " + fixed(100 * (li.ratio_high() - 1), 1) +
+                              "]";
+  std::string clause;
+  switch (s.c.decision) {
+    case measure::Decision::kFaster: clause = "FASTER than " + other + " (" + numbers + ")"; break;
+    case measure::Decision::kSlower: clause = "SLOWER than " + other + " (" + numbers + ")"; break;
+    case measure::Decision::kEquivalent:
+      clause = "EQUIVALENT to " + other + " within +-" + fixed(100 * margin, 1) + " % (" + numbers + ")";
+      break;
+    case measure::Decision::kInconclusive:
+      clause = "not decided against " + other + " (" + numbers +
+               (std::isfinite(s.c.rounds_needed)
+                    ? "; about " + std::to_string(static_cast<long>(s.c.rounds_needed)) + " rounds would decide, " +
+                          std::to_string(s.c.rounds) + " were run)"
+                    : "; the estimate sits on the margin: no number of rounds decides it)");
+      break;
+    case measure::Decision::kTooFewRounds: clause = "not compared with " + other + " (too few rounds)"; break;
+  }
+  if (!s.reliable) clause = "UNRELIABLE against " + other + " (" + s.noise_reason + ")";
+  return clause;
+}
+
+// The rounds a comparison of the table has (every row's are alike: one per segment per pass).
+std::size_t rows_rounds(const Analysis& a) { return a.rows.empty() ? 0 : a.rows.front().vs_serial.c.rounds; }
+
+// The short answer: per P, each stealing policy against queue-mutex and against the best other scheduler (the
+// fastest non-stealing one at that P by its ratio to the serial loop), one sentence each.
+void short_answer(const Measured& m, Analysis& a) {
+  const Options& o = m.o;
+  const measure::Settings settings{.margin = o.margin, .confidence = 0.95, .adjust_for_probe = o.adjust, .estimator = o.estimator};
+  std::vector<WorkerId> ps;
+  for (const Row& r : a.rows) {
+    if (std::find(ps.begin(), ps.end(), r.cell->workers) == ps.end()) ps.push_back(r.cell->workers);
+  }
+  std::vector<double> mdes, removed;
+  for (const Row& r : a.rows) {
+    if (r.vs_queue && r.vs_queue->c.adjusted.valid) removed.push_back(100 * r.vs_queue->c.variance_removed);
+    if (r.cell->workers > m.cores) continue;
+    if (r.vs_queue && r.vs_queue->c.chosen().valid) mdes.push_back(r.vs_queue->c.mde_pct);
+  }
+  a.median_mde_pct = median(mdes);
+  a.median_variance_removed_pct = median(removed);
+  for (WorkerId p : ps) {
+    const Row* best = nullptr;
+    for (const Row& r : a.rows) {
+      if (r.cell->workers != p || r.cell->scheduler.rfind("stealing/", 0) == 0 || !r.vs_serial.c.chosen().valid) continue;
+      if (!best || r.vs_serial.c.chosen().estimate < best->vs_serial.c.chosen().estimate) best = &r;
+    }
+    for (const Row& r : a.rows) {
+      if (r.cell->workers != p || r.cell->scheduler.rfind("stealing/", 0) != 0) continue;
+      std::string sentence = "P = " + std::to_string(p) + (p > m.cores ? " (oversubscribed)" : "") + ": " +
+                             r.cell->scheduler + " is ";
+      sentence += r.vs_queue ? answer_clause(*r.vs_queue, "queue-mutex", o.margin) : "not compared with queue-mutex (not run)";
+      if (best && best->cell->scheduler != "queue-mutex") {
+        ShownComparison vs_best;
+        vs_best.c = measure::analyze_pairs(measure::pair_rounds(r.cell->rounds, best->cell->rounds), settings);
+        vs_best.reliable = r.vs_serial.reliable && best->vs_serial.reliable;
+        vs_best.noise_reason = !r.vs_serial.reliable ? r.vs_serial.noise_reason : best->vs_serial.noise_reason;
+        sentence += ", and " + answer_clause(vs_best, "the best other scheduler, " + best->cell->scheduler, o.margin);
+      } else if (best) {
+        sentence += " (queue-mutex is also the fastest other scheduler here)";
+      }
+      a.answer.push_back(sentence + ".");
+    }
+  }
+  const std::size_t rounds = m.serial_rounds.size();
+  const std::size_t per_comparison = rows_rounds(a);
+  a.design_line = std::to_string(per_comparison) + " rounds per comparison (" + std::to_string(o.repeats) +
+                  " passes x segments of " + std::to_string(o.round_frames) + " frames; " + std::to_string(rounds) +
+                  " rounds in all, each the serial loop and every arm of one P once, in " + measure::to_string(o.order) +
+                  " order); verdicts on the per-round log-ratio (" + measure::to_string(o.estimator) +
+                  ", segments as blocks), Student-t 95 % interval" +
+                  (o.adjust ? " adjusted for the CPU speed probe (regression on the probe before each arm; it removed a "
+                              "median " + fixed(a.median_variance_removed_pct, 0) + " % of the variance, raw intervals in "
+                              "the JSON)"
+                            : " (raw)") +
+                  ", margin +-" + fixed(100 * o.margin, 1) + " %; this run finds a change of " +
+                  fixed(a.median_mde_pct, 1) + " % with 80 % power (median over the comparisons with queue-mutex at "
+                  "P <= " + std::to_string(m.cores) + ")";
 }
 
 // The camera path, and how much a few surfaces dominate: the 16 costliest surfaces' share of a frame's
@@ -162,7 +328,7 @@ void cost_spreads(const Measured& m, Analysis& a) {
     SpreadRow r{p, sc::round_robin_spread(m.item_ns, p), sc::round_robin_spread(m.item_estimate, p), std::nullopt};
     for (const Cell& c : m.cells) {
       if (c.scheduler != "round-robin" || c.workers != p || c.busy_ratio.empty()) continue;
-      r.busy = sc::summarize_spread(frame_medians(c.busy_ratio, o.frames));  // median over repeats, per frame
+      r.busy = sc::summarize_spread(frame_medians(c.busy_ratio, o.frames));  // median over passes, per frame
     }
     a.spreads.push_back(std::move(r));
   }
@@ -180,7 +346,7 @@ void cost_spreads(const Measured& m, Analysis& a) {
   a.spread_summary = s.str();
 }
 
-// The one-line summaries: spread of the repeats, noise, interference, tessellation audit, the LLVM child,
+// The one-line summaries: spread of the passes, noise, interference, tessellation audit, the LLVM child,
 // and the noise warning (empty when every verdict is reliable).
 void summary_lines(const Measured& m, Analysis& a) {
   const Options& o = m.o;
@@ -189,7 +355,8 @@ void summary_lines(const Measured& m, Analysis& a) {
   std::vector<double> cell_spreads;
   for (const Row& r : a.rows) cell_spreads.push_back(r.spread_pct);
   std::ostringstream spread;
-  spread << "spread of the repeats (max/min - 1): serial loop " << fixed(100 * a.serial_spread, 1)
+  spread << "spread of single passes (max/min - 1, context only: the verdicts rest on the paired rounds): serial loop "
+         << fixed(100 * a.serial_spread, 1)
          << " %; schedulers: median " << fixed(median(cell_spreads), 1) << " %, max "
          << fixed(cell_spreads.empty() ? 0.0 : *std::max_element(cell_spreads.begin(), cell_spreads.end()), 1)
          << " % (workers pinned: " << (o.pin ? "yes, --pin" : "no") << "); " << a.spread_diagnosis.line;
@@ -202,6 +369,7 @@ void summary_lines(const Measured& m, Analysis& a) {
         << " / " << fixed(100 * a.after_usage.steal_share(), 1) << " %; load average " << fixed(m.at_start.load1, 2)
         << " before, " << fixed(m.at_end.load1, 2) << " after (thresholds: " << fixed(100 * o.noise.other_share, 0)
         << " % busy, " << fixed(100 * o.noise.spread, 0) << " % spread)";
+  for (const std::string& note : a.notes) noise << "; " << note << " (context: not while the pairs ran)";
   a.noise_line = noise.str();
   nz::Usage cells_usage;
   for (const Cell& c : m.cells) cells_usage += c.usage;
@@ -217,24 +385,22 @@ void summary_lines(const Measured& m, Analysis& a) {
   }
   if (a.unreliable > 0) {
     std::ostringstream warning;
-    warning << "WARNING: noisy machine: " << a.unreliable << " of " << a.verdicts
-            << " verdicts are marked unreliable. Reasons:\n";
+    warning << "WARNING: " << a.unreliable << " of " << a.verdicts << " verdicts are marked unreliable. Reasons:\n";
     for (const auto& w : a.noise_warnings) warning << "  - " << w << "\n";
     std::size_t cell_flags = 0;
     for (const Row& r : a.rows) {
-      if (!r.vs_serial.reliable && r.vs_serial.noise_reason != (a.noise_warnings.empty() ? "" : a.noise_warnings.front())) {
+      for (const ShownComparison* x : {&r.vs_serial, r.vs_queue ? &*r.vs_queue : nullptr}) {
+        if (!x || x->reliable || (!a.noise_warnings.empty() && x->noise_reason == a.noise_warnings.front())) continue;
         if (cell_flags++ < 5) {
-          warning << "  - while " << r.cell->scheduler << " P=" << r.cell->workers << " or its reference ran: "
-                  << r.vs_serial.noise_reason << "\n";
+          warning << "  - " << r.cell->scheduler << " P=" << r.cell->workers << ": " << x->noise_reason << "\n";
         }
       }
     }
-    if (cell_flags > 5) warning << "  - ... and " << cell_flags - 5 << " more scheduler/P cells\n";
-    warning << "Re-run on a quiet machine before drawing conclusions from these verdicts.\n";
+    if (cell_flags > 5) warning << "  - ... and " << cell_flags - 5 << " more comparisons\n";
+    warning << "Re-run those comparisons when the machine is not shared with other work.\n";
     a.warning = warning.str();
   }
   for (int f = 0; f < o.frames; ++f) {
-    a.serial_inconsistencies += m.wl.serial_inconsistencies[f];
     a.capped_total += m.wl.serial_capped[f];
     a.capped_max = std::max(a.capped_max, m.wl.serial_capped[f]);
   }
@@ -262,7 +428,9 @@ void summary_lines(const Measured& m, Analysis& a) {
 
 Analysis analyze(const Measured& m) {
   Analysis a;
+  for (int f = 0; f < m.o.frames; ++f) a.serial_inconsistencies += m.wl.serial_inconsistencies[f];
   judge_rows(m, a);
+  short_answer(m, a);
   cost_spreads(m, a);
   summary_lines(m, a);
   return a;

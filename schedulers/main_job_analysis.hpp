@@ -1,6 +1,8 @@
 // main_job_analysis.hpp — what the main job's measurements say: per scheduler and P the medians, speed-up,
 // utilization and the two paired comparisons (against the serial loop and against queue-mutex at the same P)
-// with their verdicts, marked unreliable where the noise monitor says the machine was not ours; the
+// from the rounds (measure/paired_analysis.hpp: per-round log-ratios, a t interval, raw and probe-adjusted,
+// verdicts against the margin), marked unreliable only where something invalidated them; the short answer
+// (stealing against the locked queue and the best other scheduler, per P); the calibration arms' verdicts; the
 // round-robin cost spread; and the one-line summaries the terminal, frontsteal.md and frontsteal.json share.
 //
 // Why apart from the writers: the table, the JSON and the plots (main_job_tables.hpp, main_job_json.hpp,
@@ -13,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "core/paired_comparison.hpp"
+#include "measure/cpu_speed_probe.hpp"
+#include "measure/paired_analysis.hpp"
 #include "reporting/json.hpp"
-#include "schedulers/cpu_speed_probe.hpp"
 #include "schedulers/main_job_report.hpp"
 #include "schedulers/round_robin_spread.hpp"
 
@@ -24,10 +26,11 @@ namespace frontsteal::main_job {
 namespace st = frontsteal::stats;
 namespace report = frontsteal::report;
 
-// One comparison as the table shows it: the verdict, or "unreliable (verdict)" when the noise monitor says
-// the machine was not ours while it was measured.
+// One comparison as the table shows it: the verdict, or "unreliable (verdict)" when something invalidated the
+// measurement of this pair (another process took the machine while it ran, an audit failed, the co-runner did not
+// run as asked).
 struct ShownComparison {
-  st::Comparison c;
+  measure::PairedResult c;
   bool reliable = true;
   std::string noise_reason;  // why not reliable
   std::string verdict_text() const;
@@ -43,6 +46,21 @@ struct Row {
   std::optional<ShownComparison> vs_queue;  // absent for queue-mutex itself, or when it was not run
 };
 
+// A calibration arm against its base at the same P, with the planted change it realized (measured by the
+// harness's clock: exp(mean over rounds of log(round / (round - planted))) - 1; 0 for the twin). The planted
+// speed-up is the base against its +5 % arm (truth 1 / (1 + realized) - 1).
+struct CalibrationRow {
+  std::string label;
+  WorkerId workers = 0;
+  double nominal = 0, realized = 0;  // fractions of time
+  ShownComparison result;
+  const measure::ArmRounds* candidate = nullptr;  // the rounds compared (for the files: re-analysis, resampling)
+  const measure::ArmRounds* reference = nullptr;
+  bool found() const;    // the interval excludes 0 on the planted side (A/A: never)
+  bool covered() const;  // the realized change lies inside the interval
+  bool right() const;    // slower / faster / equivalent as planted
+};
+
 struct SpreadRow {
   WorkerId p;
   sc::CostSpread measured, estimated;
@@ -54,8 +72,14 @@ struct Analysis {
   double t1_ms = 0, serial_spread = 0;
   nz::SpreadDiagnosis spread_diagnosis;  // the CPU speed probe against the serial spread (cpu_speed_probe.hpp)
   nz::Usage before_usage, during_usage, after_usage;
-  std::vector<std::string> noise_warnings;  // run-wide reasons: every verdict is unreliable
-  std::vector<Row> rows;
+  std::vector<std::string> noise_warnings;  // run-wide reasons that make every verdict unreliable
+  std::vector<std::string> notes;           // context that does not invalidate (the machine before / after)
+  std::vector<Row> rows;                       // the schedulers asked about (calibration arms apart)
+  std::vector<CalibrationRow> calibration;     // --calibrate
+  std::vector<std::string> answer;             // the short answer, one sentence per P and stealing policy
+  std::string design_line;                     // how the verdicts were made
+  double median_mde_pct = 0;                   // the smallest change found with 80 % power, median over comparisons
+  double median_variance_removed_pct = 0;      // by the probe covariate, median over the comparisons with queue-mutex
   std::size_t verdicts = 0, unreliable = 0;
   bool problems = false;
   std::vector<SpreadRow> spreads;

@@ -12,9 +12,13 @@ namespace {
 
 using report::Json;
 
-// frontsteal.json's schema (docs/results-schema.md). 2: the common header of reporting/ (schema 1, written by
-// hand, had no schema_version or program); every key of schema 1 is kept.
-constexpr int kSchemaVersion = 2;
+// frontsteal.json's schema (docs/results-schema.md). 3: rounds and margin verdicts (answer, design, per-round
+// data, each comparison's raw and adjusted interval); 2: the common header of reporting/.
+constexpr int kSchemaVersion = 3;
+
+Json rounds_json(const measure::ArmRounds& r) {
+  return {{"round", r.round}, {"ms", r.time}, {"probe_ns_per_million_steps", r.probe}, {"segment", r.block}};
+}
 
 Json usage_json(const nz::Usage& u, const nz::Thresholds& t) {
   return {{"wall_s", u.wall_s}, {"windows", u.windows}, {"ticks", u.total_ticks}, {"other_share", u.other_share()},
@@ -32,7 +36,7 @@ Json spread_json(const sc::CostSpread& c) {
 }  // namespace
 
 // frontsteal.json: the set-up, the round-robin spread, the noise, the serial loop, and per scheduler and P the
-// data table's row with the structured values added (comparisons, noise, per worker, per repeat, per frame).
+// data table's row with the structured values added (comparisons, noise, per worker, per pass, per round, per frame).
 Json results_json(const Measured& m, const Analysis& a, const report::Table& data) {
   const Options& o = m.o;
   Json js = report::document(kProgram, kSchemaVersion, "measured", FRONTSTEAL_GIT_COMMIT);
@@ -45,6 +49,15 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
   js["image"] = {o.width, o.height};
   js["hardware_threads"] = m.cores;
   js["repeats_note"] = m.repeats_note;
+  js["answer"] = a.answer;
+  js["design"] = {{"line", a.design_line}, {"rounds", m.serial_rounds.size()}, {"passes", o.repeats},
+                  {"round_frames", o.round_frames}, {"order", measure::to_string(o.order)}, {"seed", o.seed},
+                  {"margin_pct", 100 * o.margin}, {"interval", std::string("Student t on the per-round log-ratios (") + measure::to_string(o.estimator) +
+                                  "), segments as blocks"},
+                  {"covariate", o.adjust ? "CPU speed probe before each arm (regression adjustment)" : "none (--no-adjust)"},
+                  {"clock", "harness steady_clock around run_frame (openmp-static-steal: the child's clock)"},
+                  {"median_mde80_pct", a.median_mde_pct}};
+  js["notes"] = a.notes;
   js["pinned"] = o.pin;
   js["path"] = ts::name(o.path);
   js["path_note"] = a.path_line;
@@ -78,7 +91,7 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
                  {"busy_threshold_pct", 100 * o.noise.other_share},
                  {"spread_threshold_pct", 100 * o.noise.spread}, {"verdicts", a.verdicts},
                  {"unreliable_verdicts", a.unreliable}, {"warnings", a.noise_warnings}};
-  js["serial"] = {{"path_ms", a.t1_ms}, {"path_ms_per_repeat", m.serial_path_ms},
+  js["serial"] = {{"path_ms", a.t1_ms}, {"path_ms_per_repeat", m.serial_path_ms}, {"rounds", rounds_json(m.serial_rounds)},
                   {"triangles_per_frame", m.wl.serial_triangles},
                   {"inconsistent_surfaces_per_frame", m.wl.serial_inconsistencies},
                   {"capped_surfaces_per_frame", m.wl.serial_capped}, {"max_steps", m.wl.settings.max_steps},
@@ -100,6 +113,11 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
     }
     row["per_worker"] = per_worker;
     row["path_ms_per_repeat"] = c.path_ms;
+    row["rounds"] = rounds_json(c.rounds);
+    // openmp-static-steal is timed by its own process: there is no second clock to check it against.
+    row["clock_check"] = c.child ? Json(nullptr)
+                                 : Json{{"max_gap_ms", c.clock_gap_max_ms}, {"frames_beyond_bound", c.clock_gap_frames},
+                                        {"bound", "1 ms + 5 % of the scheduler's own frame time"}};
     row["frame_ms_median"] = frame_medians(c.frame_ms, o.frames);
     results.push_back(std::move(row));
   }
@@ -114,6 +132,27 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
     if (c.child) children.push_back({{"scheduler", c.scheduler}, {"workers", c.workers}, {"ready", c.child->ready_line()}});
   }
   js["child_processes"] = children;
+  if (!a.calibration.empty()) js["calibration"] = calibration_json(m, a)["arms"];
+  return js;
+}
+
+Json calibration_json(const Measured& m, const Analysis& a) {
+  Json js = report::document(kProgram, kSchemaVersion, "measured", FRONTSTEAL_GIT_COMMIT);
+  js["machine"] = a.machine;
+  js["design"] = a.design_line;
+  js["base"] = m.o.calibrate_base;
+  js["hardware_threads"] = m.cores;
+  js["margin_pct"] = 100 * m.o.margin;
+  js["rounds"] = m.serial_rounds.size();
+  js["seed"] = m.o.seed;
+  Json arms = Json::array();
+  for (const CalibrationRow& r : a.calibration) {
+    arms.push_back({{"workers", r.workers}, {"arm", r.label}, {"planted_pct", 100 * r.nominal},
+                    {"realized_pct", 100 * r.realized}, {"found", r.found()}, {"covered", r.covered()},
+                    {"right_verdict", r.right()}, {"comparison", r.result.json()},
+                    {"rounds", {{"candidate", rounds_json(*r.candidate)}, {"reference", rounds_json(*r.reference)}}}});
+  }
+  js["arms"] = arms;
   return js;
 }
 

@@ -1,6 +1,6 @@
 // main_job_json.hpp — frontsteal.json (nlohmann, schema in docs/results-schema.md): the set-up, the round-robin
 // spread, the noise, the serial loop, and per scheduler and P the data table's row with the structured values
-// added (comparisons, noise, per worker, per repeat, per frame).
+// added (comparisons, noise, per worker, per pass, per round, per frame).
 #pragma once
 
 #include "reporting/json.hpp"
@@ -11,5 +11,8 @@ namespace frontsteal::main_job {
 
 // `data`: the data table (main_job_tables.hpp); its rows become results[] (row 0, the serial loop, is "serial").
 report::Json results_json(const Measured& m, const Analysis& a, const report::Table& data);
+
+// frontsteal-calibration.json (--calibrate): each calibration arm against its base, planted and realized.
+report::Json calibration_json(const Measured& m, const Analysis& a);
 
 }  // namespace frontsteal::main_job

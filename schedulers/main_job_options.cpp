@@ -27,34 +27,53 @@ namespace {
 
 constexpr const char* kDescription = R"(Tessellates a scene along a deterministic camera path (an orbit of the whole model, then a zoom into a small
 corner region: the case where round robin becomes imbalanced, paper §3) with a serial loop and with every
-scheduler at P = 1 ... cores and oversubscribed (2 x cores), measured side by side in one run. Shows progress,
-prints a table (frames/s, speed-up over the serial loop, % of ideal T1/P, utilization = busy / (wall x P),
-CPU time and time off a CPU per worker, imbalance = max/mean busy, steals, lock waits, and per comparison the
-median paired ratio with its 95 % bootstrap interval and a verdict) and writes JSON, CSV, markdown and PNG
-plots (gnuplot). A noise monitor samples /proc before, during and after the measurement; when other processes
-or the hypervisor took a share of the machine, or the serial loop's repeats spread too much, it prints a
-warning and marks the verdicts it affects "unreliable".
+scheduler at P = 1 ... cores and oversubscribed (2 x cores), measured side by side in one run, and says first,
+in plain words, whether stealing is faster than the locked queue and than the best other scheduler at each P.
+
+How it measures. The run is made of ROUNDS. A round covers one segment of the path (--round-frames frames,
+default 1) at one P, and runs the serial loop and every arm at that P once on it — every scheduler, and with
+--calibrate the calibration arms — in a fresh random order (--order). A pass is one round per segment and P;
+--repeats counts passes. Workers are pinned (--pin, the default: the two vCPUs of these VMs run at different
+speeds). Every frame is timed by this program's own clock around the scheduler's run_frame call (the
+scheduler's own figure is kept as a cross-check). Each comparison (a scheduler against the serial loop, and
+against queue-mutex at the same P) is analysed on the per-round log-ratio of the two arms' times: a robust
+location (Huber's M-estimate; --estimator) with segment effects removed and a Student-t 95 % interval, raw and
+adjusted for the CPU speed probe timed just before each arm (regression adjustment); the ratio shown is its
+exponential.
+Verdicts against the margin m (--margin, default 2 %): faster / slower when the whole interval lies beyond +-m,
+equivalent when it lies inside +-m, inconclusive otherwise, with the rounds a run of this noise would need.
+"unreliable" only when something invalidated the measurement: another process took the machine while the pair
+ran (noise monitor, /proc), the co-runner did not run as asked, or an audit failed.
 Every frame is audited: each surface tessellated exactly once, triangle count equal to the serial loop's,
 and each trimmed surface's triangles tile its trimmed domain exactly (no overlap, no covered hole, (u, v) area
 equal to the trim loops'). Any failure is reported and the exit status is 1.)";
 
 constexpr const char* kFooter = R"(
-Verdicts: per repeat r, ratio = T_P[r] / T_ref[r] with T_ref the serial loop (same repeat) or queue-mutex at
-the same P; "ahead" when the 95 % interval of the median ratio lies below 1, "behind" above 1, "no difference"
-when it contains 1; the effect is (median ratio - 1) in % of path time (negative: faster).
+--calibrate adds, at P = 1 and P = cores (both added to --threads for every scheduler when missing), arms that
+test the method itself on this machine: an A/A twin (the
+--calibrate-base scheduler under a second name: it must come out equivalent, never faster or slower) and the
+same scheduler with planted extra work of 2, 5 and 10 % of its frame time, done after each frame inside the
+timed region (they must come out slower; the base against the +5 % arm is a planted speed-up of 4.8 %). The
+planted work is resized after the first pass from what it realized there; the sizes realized over the run are
+measured by the same clock and reported with the verdicts (frontsteal-calibration.md).
+--interference sets the pinning itself: pinned pins the workers, unpinned leaves every thread to the OS
+(whatever --pin / --no-pin say).
 Columns cpu and off-cpu: the workers' thread CPU time, and their time in the frame without a CPU
 (descheduled, or asleep on a lock), both over wall x P like utilization; idle for lack of work shows as
 utilization below cpu.
 
 openmp-static-steal (LLVM libomp's static_steal) runs in a child process, frontsteal-llvm-openmp, built with
 clang++-14 beside this program (FRONTSTEAL_LLVM_OPENMP=PATH overrides where it is); where it is missing its
-rows read "not available" with the reason, and the run goes on.
+rows read "not available" with the reason, and the run goes on. Its frames are timed by the child's clock (the
+harness sees only the exchange with the child).
 Round-robin cost spread: per frame, max/min over workers of the cost round robin (item i on worker i mod P)
 gives them, from the serial warm-up pass's measured per-item times and from the cost estimates, and the
 round-robin rows' measured busy time per worker; worst frame and median over frames (paper §3: 1:50).
 
-Outputs in DIR: frontsteal.json (everything, per frame), frontsteal.csv and frontsteal.md (the table),
-frontsteal-speedup.png (speed-up against P), frontsteal-frames.png (frame time along the path).
+Outputs in DIR: frontsteal.json (everything, per frame and per round), frontsteal.csv and frontsteal.md (the
+answer, then the table), frontsteal-speedup.png (paired speed-up over the serial loop against P, with 95 %
+intervals; open marks: not decided), frontsteal-verdicts.png (every scheduler against queue-mutex, interval and
+margin), frontsteal-frames.png (frame time along the path); with --calibrate frontsteal-calibration.{md,json}.
 All figures are measured on this machine; none are simulated.
 Exit status: 0; 1 when an audit fails or a scheduler cannot run; 2 for bad usage (or a scene that cannot be
 loaded).)";
@@ -129,9 +148,10 @@ Options parse_options(int argc, char** argv) {
   cli.option("--frames", o.frames, "frames along the path")->type_name("F")->check(CLI::Range(1, 100000));
   std::string repeats = "auto";
   cli.option("--repeats", repeats,
-             "interleaved runs of the path per scheduler and P; medians, paired ratios and their bootstrap intervals "
-             "are reported. auto: 10 when the warm-up pass predicts they fit in --budget, else as many as fit, at "
-             "least 5; rounds stop early (not below 5) once the budget is spent")
+             "passes over the path (a pass is one round per segment of --round-frames frames and P; at least 2 give "
+             "an interval, segments being blocks). auto: a pilot of 3 "
+             "passes measures the spread of every comparison's per-round log-ratio, then the run is sized so that a "
+             "change of the margin would be found with 80 % power, within --budget (at least 5 passes)")
       ->type_name("R|auto")->check(validator([&](const std::string& v) -> std::string {
         if (v == "auto") return {};
         try {
@@ -142,10 +162,40 @@ Options parse_options(int argc, char** argv) {
         }
         return "expects auto or an integer in [1, 1000], got '" + v + "'";
       }));
-  cli.option("--budget", o.budget_s, "seconds the measured repeats may take under --repeats auto")
+  cli.option("--budget", o.budget_s, "seconds the measured rounds may take under --repeats auto")
       ->type_name("S")->check(CLI::Range(1.0, 1e6));
-  cli.flag("--pin", o.pin, "pin worker w (and the serial loop, as worker 0) to the w-th allowed CPU (off by default; "
-                           "the \"spread of the repeats\" line says whether it narrows them)");
+  cli.option("--round-frames", o.round_frames,
+             "frames per round: the path is split into segments of F frames, each a round in which every arm runs "
+             "once (short rounds keep the members of a pair close in time)")
+      ->type_name("F")->check(CLI::Range(1, 100000));
+  std::string order = "random";
+  cli.option("--order", order,
+             "order of the arms within a round: random (a fresh random order per round, from --seed), "
+             "counterbalanced (A-B-B-A: every other round reversed), fixed (the same order every round: biased "
+             "under drift, kept as a negative control)")
+      ->type_name("K")->check(CLI::IsMember({"random", "counterbalanced", "fixed"}));
+  double margin_pct = 100 * o.margin;
+  cli.option("--margin", margin_pct,
+             "equivalence margin m (%): faster / slower when the whole 95 % interval lies beyond +-m, equivalent "
+             "when inside")
+      ->type_name("PCT")->check(CLI::Range(0.01, 100.0));
+  std::string estimator = "huber";
+  cli.option("--estimator", estimator,
+             "location of the per-round log-ratios: huber (Huber's M-estimate, robust to the rounds in which the "
+             "machine changed speed inside one arm's run) or mean (least squares, the textbook t interval)")
+      ->type_name("E")->check(CLI::IsMember({"huber", "mean"}));
+  bool no_adjust = false;
+  cli.flag("--no-adjust", no_adjust,
+           "verdicts from the raw interval instead of the one adjusted for the CPU speed probe (both are reported)");
+  cli.flag("--calibrate", o.calibrate,
+           "add the calibration arms at P = 1 and P = cores: an A/A twin and planted slowdowns of 2, 5 and 10 % of "
+           "the base scheduler (see below)");
+  cli.option("--calibrate-base", o.calibrate_base, "the scheduler the calibration arms copy")->type_name("NAME");
+  bool no_pin = false;
+  cli.flag("--pin", o.pin, "pin worker w (and the serial loop, as worker 0) to the w-th allowed CPU (the default: "
+                           "on these VMs the two vCPUs run at different speeds, and unpinned arms land on either, "
+                           "which widened the paired intervals 1.6-fold here)");
+  cli.flag("--no-pin", no_pin, "leave every thread where the OS puts it");
   std::string interference;
   cli.option("--interference", interference,
              "a co-runner child process busy-loops DUTY % (1-100, default 50) of each 10 ms on one core while the "
@@ -163,7 +213,8 @@ Options parse_options(int argc, char** argv) {
              "share of the machine (%) other processes (or steal) may take before a run is unreliable")
       ->type_name("PCT")->check(CLI::Range(0.0, 100.0));
   cli.option("--noise-spread", noise_spread,
-             "spread max/min - 1 (%) of the serial loop's repeats above which a run is unreliable")
+             "spread max/min - 1 (%) of the serial loop's passes above which the spread line warns (information "
+             "only: the verdicts rest on the paired rounds, not on the spread of single passes)")
       ->type_name("PCT")->check(CLI::Range(0.0, 1000.0));
   cli.option("--tolerance", o.tolerance, "screen-space tolerance in pixels")->type_name("PX")->check(CLI::Range(0.01, 1000.0));
   cli.option("--grain", o.grain,
@@ -185,10 +236,15 @@ Options parse_options(int argc, char** argv) {
 
   o.path = *ts::camera_path_named(path);
   if (cli.app().count("--interference")) o.interference = fi::parse_interference(interference, nullptr);
-  if (o.interference && o.interference->pinned) o.pin = true;  // pinned set-up: workers pinned as by --pin
+  o.pin = !no_pin;
+  if (o.interference) o.pin = o.interference->pinned;  // pinned set-up: workers pinned; unpinned: nothing is
   o.repeats = repeats == "auto" ? 0 : std::stoi(repeats);
   if (cli.app().count("--noise-busy")) o.noise.other_share = o.noise.steal_share = noise_busy / 100.0;
   o.noise.spread = noise_spread / 100.0;
+  o.order = *measure::order_kind_named(order);
+  o.margin = margin_pct / 100.0;
+  o.adjust = !no_adjust;
+  o.estimator = estimator == "mean" ? measure::Estimator::kMean : measure::Estimator::kHuber;
   std::tie(o.width, o.height) = report::parse_size(size);
   o.plot = !no_plot;
   if (!defect.empty()) o.planted_defect = *ts::planted_defect_named(defect);
@@ -198,6 +254,20 @@ Options parse_options(int argc, char** argv) {
     o.threads.push_back(2 * hardware_cores());
   }
   o.schedulers = chosen_schedulers(o.schedulers, cli);
+  if (o.calibrate) {
+    const sc::SchedulerInfo* base = sc::find_scheduler(o.calibrate_base);
+    if (!base || base->contract != fs::Contract::kExactlyOnce) {
+      cli.usage_error("--calibrate-base: '" + o.calibrate_base + "' is not an exactly-once scheduler (see --list)");
+    }
+    // The calibration arms are compared with their base at P = 1 and P = cores: it must run.
+    if (std::find(o.schedulers.begin(), o.schedulers.end(), o.calibrate_base) == o.schedulers.end()) {
+      o.schedulers.push_back(o.calibrate_base);
+    }
+    for (unsigned p : {1u, hardware_cores()}) {
+      if (std::find(o.threads.begin(), o.threads.end(), p) == o.threads.end()) o.threads.push_back(p);
+    }
+    std::sort(o.threads.begin(), o.threads.end());
+  }
   return o;
 }
 

@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "core/id_range.hpp"
-#include "schedulers/interference.hpp"
-#include "schedulers/noise_monitor.hpp"
+#include "measure/interference.hpp"
+#include "measure/noise_monitor.hpp"
+#include "measure/paired_analysis.hpp"
+#include "measure/round_order.hpp"
 #include "tessellate/camera_path.hpp"
 #include "tessellate/surface_tessellator.hpp"
 
@@ -31,9 +33,16 @@ struct Options {
   int frames = 24;
   ts::CameraPathKind path = ts::CameraPathKind::orbit_then_zoom;
   std::optional<fi::InterferenceSpec> interference;  // absent: off
-  int repeats = 0;  // 0: auto (see --repeats)
+  int repeats = 0;  // passes over the path; 0: auto (see --repeats)
   double budget_s = 180;
-  bool pin = false;
+  int round_frames = 1;  // frames per round: the path is split into segments of this many frames
+  measure::OrderKind order = measure::OrderKind::kRandom;
+  double margin = 0.02;       // the verdicts' equivalence margin (fraction of time)
+  bool adjust = true;         // verdicts from the CPU-probe-adjusted interval
+  measure::Estimator estimator = measure::Estimator::kHuber;
+  bool calibrate = false;     // add the calibration arms (A/A twin, planted slowdowns)
+  std::string calibrate_base = "queue-mutex";
+  bool pin = true;
   nz::Thresholds noise;
   double tolerance = 1.0;
   ItemId grain = 0;

@@ -5,23 +5,68 @@
 #include <sstream>
 #include <string>
 
+#include "reporting/table.hpp"
+
 namespace frontsteal::main_job {
 
 using report::gnuplot_text;
 
-// Plots: speed-up against P (one line per scheduler, the ideal dashed), and frame time along the path at the
-// largest P not above the core count. The data and the script are always written; gnuplot runs unless --no-plot.
+namespace {
+
+bool decided(const ShownComparison& c) {
+  return c.reliable && (c.c.decision == measure::Decision::kFaster || c.c.decision == measure::Decision::kSlower ||
+                        c.c.decision == measure::Decision::kEquivalent);
+}
+
+}  // namespace
+
+// Plots: the paired speed-up over the serial loop against P (exp of the estimate of the per-round log T1 / T_P with
+// its 95 % interval; filled marks decided, open marks not decided), every scheduler against queue-mutex (interval
+// and margin band, coloured by verdict), and frame time along the path at the largest P not above the core
+// count. The data and the script are always written; gnuplot runs unless --no-plot.
 void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir& dir) {
   const Options& o = m.o;
   std::ostringstream dat;
   for (const auto& name : o.schedulers) {
     dat << "\"" << name << "\"\n";
     for (const Row& r : a.rows) {
-      if (r.cell->scheduler == name) dat << r.cell->workers << ' ' << r.speedup << '\n';
+      if (r.cell->scheduler != name || !r.vs_serial.c.chosen().valid) continue;
+      const measure::LogInterval& li = r.vs_serial.c.chosen();
+      const double sp = 1.0 / li.ratio();
+      dat << r.cell->workers << ' ' << sp << ' ' << 1.0 / li.ratio_high() << ' ' << 1.0 / li.ratio_low() << ' '
+          << (decided(r.vs_serial) ? std::to_string(sp) : "NaN") << ' '
+          << (decided(r.vs_serial) ? "NaN" : std::to_string(sp)) << '\n';
     }
     dat << "\n\n";
   }
   dir.write("frontsteal-speedup.dat", dat.str());
+  // The forest of comparisons with queue-mutex: one line per scheduler and P, grouped by verdict for colour.
+  const char* groups[] = {"faster", "slower", "equivalent", "not decided"};
+  std::ostringstream forest;
+  int line = 0;
+  std::ostringstream tics;
+  for (int g = 0; g < 4; ++g) {
+    forest << "\"" << groups[g] << "\"\n";
+    int y = 0;
+    for (const Row& r : a.rows) {
+      if (!r.vs_queue || !r.vs_queue->c.chosen().valid) continue;
+      ++y;
+      const measure::Decision d = r.vs_queue->c.decision;
+      const int group = !r.vs_queue->reliable ? 3
+                        : d == measure::Decision::kFaster ? 0
+                        : d == measure::Decision::kSlower ? 1
+                        : d == measure::Decision::kEquivalent ? 2 : 3;
+      if (g == 0) {
+        tics << (line++ ? ", " : "") << "\"P=" << r.cell->workers << " " << gnuplot_text(r.cell->scheduler) << "\" " << -y;
+      }
+      if (group != g) continue;
+      const measure::LogInterval& li = r.vs_queue->c.chosen();
+      forest << li.ratio() << ' ' << -y << ' ' << li.ratio_low() << ' ' << li.ratio_high() << '\n';
+    }
+    forest << "NaN NaN NaN NaN\n";  // keeps every block non-empty for gnuplot
+    forest << "\n\n";
+  }
+  dir.write("frontsteal-verdicts.dat", forest.str());
   WorkerId best_p = 1;
   for (WorkerId p : o.threads) {
     if (p <= m.cores) best_p = std::max(best_p, p);
@@ -42,17 +87,34 @@ void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir&
   }
   dir.write("frontsteal-frames.dat", frames.str());
   const WorkerId max_p = *std::max_element(o.threads.begin(), o.threads.end());
+  const std::size_t rounds = a.rows.empty() ? 0 : a.rows.front().vs_serial.c.rounds;
   std::ostringstream gp;
   gp << "# gnuplot script written by frontsteal; run from " << o.out << ": gnuplot frontsteal.gp\n"
      << "set terminal pngcairo size 1200,760 font 'sans,10'\nset key outside right top\nset grid\n"
      << "set output 'frontsteal-speedup.png'\n"
-     << "set title \"Tessellation speed-up over the serial loop (measured): " << gnuplot_text(o.scene) << ", "
-     << m.wl.model.surfaces.size() << " surfaces\\n" << gnuplot_text(a.machine) << "\"\n"
+     << "set title \"Paired speed-up over the serial loop (measured; per-round T1 / T(P), 95 % interval; open "
+        "marks: not decided): " << gnuplot_text(o.scene) << ", " << m.wl.model.surfaces.size()
+     << " surfaces\\n" << gnuplot_text(a.machine) << "; " << rounds << " rounds per comparison\"\n"
      << "set xlabel 'workers P'\nset ylabel 'speed-up (T1 / T_P)'\nset xrange [0.5:" << max_p + 0.5 << "]\n"
      << "set yrange [0:*]\n"
      << "plot for [i=0:" << o.schedulers.size() - 1 << "] 'frontsteal-speedup.dat' index i using 1:2 with "
-        "linespoints lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1), (x <= " << m.cores << " ? x : " << m.cores
-     << ") with lines dashtype 2 lc 'black' title 'ideal'\n"
+        "lines lt 1+i%8 dt 1+i/8 title columnheader(1), \\\n  for [i=0:" << o.schedulers.size() - 1
+     << "] 'frontsteal-speedup.dat' index i using 1:2:3:4 with yerrorbars lt 1+i%8 pt 0 notitle, \\\n  for [i=0:"
+     << o.schedulers.size() - 1 << "] 'frontsteal-speedup.dat' index i using 1:5 with points lt 1+i%8 pt 7 notitle, \\\n"
+     << "  for [i=0:" << o.schedulers.size() - 1
+     << "] 'frontsteal-speedup.dat' index i using 1:6 with points lt 1+i%8 pt 6 ps 1.5 notitle, \\\n  (x <= "
+     << m.cores << " ? x : " << m.cores << ") with lines dashtype 2 lc 'black' title 'ideal'\n"
+     << "set output 'frontsteal-verdicts.png'\n"
+     << "set title \"Every scheduler against queue-mutex at the same P (measured): per-round time ratio to "
+        "queue-mutex, 95 % interval; shaded: the +-" << report::fixed_text(100 * o.margin, 1) << " % margin\\n"
+     << gnuplot_text(a.machine) << "; " << rounds << " rounds per comparison\"\n"
+     << "set xlabel 'time relative to queue-mutex (< 1: faster)'\nunset ylabel\nset ytics (" << tics.str()
+     << ") font 'sans,8'\nset autoscale x\nset yrange [" << -(line + 1) << ":0]\nset key outside right top\n"
+     << "set object 1 rectangle from " << 1.0 / (1.0 + o.margin) << ", graph 0 to " << 1.0 + o.margin
+     << ", graph 1 fillcolor rgb '#dddddd' fillstyle solid 0.5 noborder behind\n"
+     << "plot for [i=0:3] 'frontsteal-verdicts.dat' index i using 1:2:3:4 with xerrorbars pt 7 lc i+1 "
+        "title columnheader(1), 1/0 notitle\n"
+     << "unset object 1\nset ytics autofreq font 'sans,10'\nset key outside right top\n"
      << "set output 'frontsteal-frames.png'\n"
      << "set title 'Frame time along the camera path (measured), P = " << best_p
      << (o.path == ts::CameraPathKind::orbit_then_zoom

@@ -20,20 +20,46 @@ namespace {
 
 std::string fixed(double v, int digits) { return report::fixed_text(v, digits); }
 
+// The short answer: what the run decided, first, in plain words.
+std::string answer_text(const Analysis& a) {
+  std::ostringstream s;
+  s << "ANSWER (measured on " << a.machine << "; " << a.design_line << "):\n";
+  for (const std::string& line : a.answer) s << "  " << line << "\n";
+  if (a.answer.empty()) s << "  no stealing scheduler was run (see --schedulers)\n";
+  return s.str();
+}
+
 // The heading lines above the table (terminal).
 std::string terminal_heading(const Measured& m, const Analysis& a) {
   const Options& o = m.o;
   std::ostringstream s;
   s << "\nfrontsteal: " << o.scene << ", " << m.wl.model.surfaces.size() << " surfaces, " << o.frames << " frames x "
-    << o.repeats << " repeats (medians), tolerance " << o.tolerance << " px, " << o.width << "x" << o.height << "\n"
-    << "machine: " << a.machine << " (measured, not simulated)\n"
+    << o.repeats << " passes, tolerance " << o.tolerance << " px, " << o.width << "x" << o.height << "\n\n"
+    << answer_text(a) << "\n"
     << "ideal = T1 / min(P, " << m.cores << "); utilization = busy / (wall x P), summed over every frame; "
     << "imbalance = max/mean busy per frame, averaged; cpu, off-cpu = workers' thread CPU time and time "
     << "in the frame without a CPU, over wall x P\n"
-    << "repeats: " << o.repeats << " (" << m.repeats_note << "); T_P/T_ref = median of per-repeat ratios, "
-    << "95 % bootstrap interval; verdict at 95 %, effect = change in path time\n"
+    << "passes: " << o.repeats << " (" << m.repeats_note << "); T_P/T_ref = exp of the robust (Huber) estimate of the per-round log-ratios "
+    << "with its 95 % t interval; verdict against +-" << fixed(100 * o.margin, 1) << " %, effect = change in time\n"
     << a.path_line << "\n" << a.interference_line << "\n" << a.spread_summary << "\n\n";
   return s.str();
+}
+
+// The calibration arms' verdicts (--calibrate): the method tested on this machine, in this run.
+std::string calibration_text(const Analysis& a) {
+  if (a.calibration.empty()) return {};
+  report::Table t({{"workers", "P"}, {"arm", "calibration arm", false}, {"planted", "planted (%)"},
+                   {"realized", "realized (%)"}, {"interval", "ratio [95% CI]", false}, {"verdict", "verdict", false},
+                   {"found", "found", false}, {"covered", "realized inside", false}, {"sd", "sd/round (%)"},
+                   {"removed", "variance removed (%)"}});
+  for (const CalibrationRow& r : a.calibration) {
+    t.add_row({r.workers, r.label, fixed(100 * r.nominal, 1), fixed(100 * r.realized, 2), r.result.interval_text(),
+               r.result.verdict_text(), r.nominal == 0 ? std::string("-") : (r.found() ? "yes" : "no"),
+               r.covered() ? "yes" : "no", fixed(100 * r.result.c.chosen().sd, 2),
+               fixed(100 * r.result.c.variance_removed, 1)});
+  }
+  return "calibration arms (the method tested in this run: the A/A twin must not be faster or slower, planted "
+         "changes must be found):\n" + t.markdown();
 }
 
 std::string markdown_report(const Measured& m, const Analysis& a, const std::string& table) {
@@ -42,14 +68,18 @@ std::string markdown_report(const Measured& m, const Analysis& a, const std::str
   md << "# frontsteal main job (measured)\n\n"
      << "Scene `" << o.scene << "` (" << m.wl.model.surfaces.size() << " surfaces), " << o.frames
      << " frames along the camera path `" << ts::name(o.path) << "`, " << o.repeats
-     << " interleaved repeats (medians), tolerance " << o.tolerance << " px, " << o.width << "x" << o.height
+     << " passes (" << m.repeats_note << "), tolerance " << o.tolerance << " px, " << o.width << "x" << o.height
      << ". Machine: " << a.machine << ". Commit " << FRONTSTEAL_GIT_COMMIT << ".\n\n"
-     << "Verdicts: median of the per-repeat ratios T_P[r] / T_ref[r] with its 95 % bootstrap interval; ahead / "
-     << "behind when the interval lies below / above 1; effect = change in path time. cpu and off-cpu: the "
+     << "## Answer\n\n" << answer_text(a) << "\n"
+     << "Verdicts: per round (the serial loop and every arm of one P once on one segment of the path, random order), the log-ratio "
+     << "T_P[r] / T_ref[r]; exp of its Huber estimate (segments as blocks) with its 95 % Student-t interval (adjusted for the CPU speed probe "
+     << "unless --no-adjust); faster / slower when the interval lies beyond +-" << fixed(100 * o.margin, 1)
+     << " %, equivalent inside, inconclusive otherwise; effect = change in time. cpu and off-cpu: the "
      << "workers' thread CPU time and their time in the frame without a CPU, over wall x P.\n\n"
      << "**" << a.path_line << "; " << a.interference_line << ".**\n\n```\n" << a.spread_summary << "\n```\n\n"
      << table << '\n' << a.child_note << (a.child_note.empty() ? "" : "\n") << a.tessellation_audit << ".\n\n"
-     << a.spread_line << ".\n\n" << a.noise_line << ".\n";
+     << a.spread_line << ".\n\n" << a.noise_line << ".\n"
+     << (a.calibration.empty() ? "" : "\n" + calibration_text(a));
   if (!a.warning.empty()) md << "\n**" << a.warning.substr(0, a.warning.find('\n')) << "**\n\n```\n" << a.warning << "```\n";
   return md.str();
 }
@@ -78,15 +108,23 @@ int write_results(const Measured& m, double elapsed_s) {
   const std::string table = shown_table(m, a).markdown();
   std::cout << terminal_heading(m, a) << table << '\n' << a.child_note << a.tessellation_audit << '\n'
             << a.spread_line << '\n' << a.noise_line << '\n';
+  if (!a.calibration.empty()) std::cout << '\n' << calibration_text(a);
   try {
     const report::ResultsDir dir(kProgram, o.out);
     const report::Table data = data_table(m, a);
     dir.write("frontsteal.md", markdown_report(m, a, table));
     dir.write("frontsteal.csv", data.csv());
     dir.write_json("frontsteal.json", results_json(m, a, data));
+    if (!a.calibration.empty()) {
+      dir.write("frontsteal-calibration.md", "# frontsteal calibration arms (measured)\n\nMachine: " + a.machine +
+                                                 ". Commit " + FRONTSTEAL_GIT_COMMIT + ". " + a.design_line + ".\n\n" +
+                                                 calibration_text(a));
+      dir.write_json("frontsteal-calibration.json", calibration_json(m, a));
+    }
     write_plots(m, a, dir);
     std::cout << "\nwrote " << dir.file("frontsteal.json").string() << ", .csv, .md"
-              << (o.plot ? ", frontsteal-speedup.png, frontsteal-frames.png" : "") << " ("
+              << (o.plot ? ", frontsteal-speedup.png, frontsteal-verdicts.png, frontsteal-frames.png" : "")
+              << (a.calibration.empty() ? "" : ", frontsteal-calibration.{md,json}") << " ("
               << fixed(elapsed_s, 0) << " s)\n";
   } catch (const std::exception& e) {
     std::cerr << kProgram << ": " << e.what() << '\n';
@@ -95,7 +133,7 @@ int write_results(const Measured& m, double elapsed_s) {
   if (a.unreliable > 0) {
     // Last, on stdout and stderr, so it is the thing one sees.
     std::cout << '\n' << a.warning;
-    std::cerr << kProgram << ": WARNING: noisy machine: " << a.unreliable << " of " << a.verdicts
+    std::cerr << kProgram << ": WARNING: " << a.unreliable << " of " << a.verdicts
               << " verdicts unreliable (reasons on stdout and in frontsteal.md)\n";
   }
   return report_problems(m, a) ? 1 : 0;

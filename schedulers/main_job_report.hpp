@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "measure/noise_monitor.hpp"
+#include "measure/pass_usage.hpp"
 #include "schedulers/main_job_cell.hpp"
 #include "schedulers/main_job_options.hpp"
 #include "schedulers/main_job_workload.hpp"
-#include "schedulers/noise_monitor.hpp"
-#include "schedulers/pass_usage.hpp"
 
 namespace frontsteal::main_job {
 
@@ -31,6 +31,7 @@ struct Measured {
   const std::vector<nz::Usage>& serial_usage;
   const std::vector<double>& serial_probe;  // the CPU speed probe around each serial pass, ns per 10^6 steps
   const std::vector<nz::PassUsage>& serial_pass_usage;  // what each serial pass's thread did (pass_usage.hpp)
+  const measure::ArmRounds& serial_rounds;              // per round: the serial loop's segment time, probe, segment
   const std::vector<Cell>& cells;
   const std::vector<Cell>& not_available;
   nz::ProcSample at_start, measure_start, measure_end, at_end;

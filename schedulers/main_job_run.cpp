@@ -1,18 +1,21 @@
-// main_job_run.cpp — the main job's measurement (main_job_run.hpp): set-up of every cell, the serial loop,
-// the in-process and the child paths, the interleaved rounds and the noise monitor's windows.
+// main_job_run.cpp — the main job's measurement (main_job_run.hpp): set-up of every cell, the serial loop's and
+// the schedulers' segments (in process and in the child), the rounds, --repeats auto and the noise monitor.
 #include "schedulers/main_job_run.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <thread>
 #include <utility>
 
+#include "measure/cpu_speed_probe.hpp"
+#include "measure/round_order.hpp"
 #include "reporting/table.hpp"
-#include "schedulers/cpu_speed_probe.hpp"
 #include "schedulers/round_robin_spread.hpp"
 
 namespace frontsteal::main_job {
@@ -25,6 +28,10 @@ namespace report = frontsteal::report;
 // item of a frame rather than inside each scheduler, so it reaches the threads of oneTBB and OpenMP too,
 // which we do not create.
 thread_local int t_pinned_as = -1;
+
+double elapsed_s(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -51,18 +58,59 @@ sc::ChildWorkload child_workload(const Options& o) {
 
 }  // namespace
 
-std::size_t progress_steps(const Options& o) {
-  return 1 + static_cast<std::size_t>(std::max(o.repeats, 1)) * (1 + o.threads.size() * o.schedulers.size());
+int segments(const Options& o) { return (o.frames + o.round_frames - 1) / o.round_frames; }
+
+int distinct_p(const Options& o) {
+  std::vector<WorkerId> ps(o.threads.begin(), o.threads.end());
+  std::sort(ps.begin(), ps.end());
+  return static_cast<int>(std::unique(ps.begin(), ps.end()) - ps.begin());
 }
 
-Measurement::Measurement(Options& o, Workload& wl, FrameTessellator& tess)
+std::size_t progress_steps(const Options& o) {
+  return 1 + static_cast<std::size_t>(std::max(o.repeats, 1)) * static_cast<std::size_t>(segments(o));
+}
+
+Measurement::Measurement(Options& o, Workload& wl, FrameTessellator& tess, const WarmUp& warm)
     : o_(o), wl_(wl), tess_(tess), runs_(static_cast<ItemId>(wl.model.surfaces.size())) {
   for (WorkerId p : o.threads) {
     for (const auto& name : o.schedulers) {
       Cell c;
-      c.scheduler = name;
+      c.scheduler = c.label = name;
       c.workers = p;
       cells_.push_back(std::move(c));
+    }
+  }
+  if (o.calibrate) add_calibration_arms(warm);
+}
+
+// The calibration arms, at P = 1 and P = cores: the base scheduler under a second name (the A/A twin) and with
+// planted work of 2, 5 and 10 % of its expected frame time, spun on the calling thread after each frame, inside
+// the timed region. The steps per frame come from the warm-up's serial frame times, over min(P, cores), and the
+// probe's speed now; what they realize is measured round by round (round_planted_ms), not assumed.
+void Measurement::add_calibration_arms(const WarmUp& warm) {
+  const double ns_per_step = nz::probe_ns_per_million_steps() / 1e6;
+  std::vector<WorkerId> ps{1};
+  const auto cores = static_cast<WorkerId>(hardware_cores());
+  if (cores > 1) ps.push_back(cores);
+  for (WorkerId p : ps) {
+    auto arm = [&](ArmRole role, double planted, const std::string& label) {
+      Cell c;
+      c.scheduler = o_.calibrate_base;
+      c.label = label;
+      c.role = role;
+      c.planted = planted;
+      c.workers = p;
+      for (int f = 0; f < o_.frames; ++f) {
+        double frame_ns = 0;
+        for (double ns : warm.item_ns[static_cast<std::size_t>(f)]) frame_ns += ns;
+        frame_ns /= std::min<double>(p, cores);
+        c.planted_steps.push_back(static_cast<std::uint64_t>(planted * frame_ns / std::max(ns_per_step, 1e-3)));
+      }
+      cells_.push_back(std::move(c));
+    };
+    arm(ArmRole::kTwin, 0, o_.calibrate_base + " (A/A twin)");
+    for (int pct : {2, 5, 10}) {
+      arm(ArmRole::kPlanted, pct / 100.0, o_.calibrate_base + " +" + std::to_string(pct) + " % planted");
     }
   }
 }
@@ -79,7 +127,7 @@ void Measurement::pin_as(WorkerId w) const {
 }
 
 // The caller of oneTBB and OpenMP is their worker 0: under --pin it is pinned by its first item, and given
-// back every CPU after each path so the next scheduler's threads are not born confined to one core.
+// back every CPU after each segment so the next scheduler's threads are not born confined to one core.
 void Measurement::unpin_caller() const {
   if (!o_.pin) return;
   pinning_.unpin_this_thread();
@@ -118,7 +166,7 @@ bool Measurement::start_cells(const sc::WorkloadHints& hints) {
     try {
       c.instance = info->make(config, hints);
     } catch (const std::exception& e) {
-      std::cerr << kProgram << ": cannot start " << c.scheduler << " with P=" << c.workers << ": " << e.what() << '\n';
+      std::cerr << kProgram << ": cannot start " << c.label << " with P=" << c.workers << ": " << e.what() << '\n';
       return false;
     }
     c.setup_ms = ms_since(t0);
@@ -152,114 +200,246 @@ bool Measurement::start_interference() {
   return true;
 }
 
-// The serial reference (T1): a plain loop on this thread, the co-runner paused.
-void Measurement::run_serial_path() {
+namespace {
+
+// The frames [first, last) of segment s.
+std::pair<int, int> segment_frames(const Options& o, int s) {
+  return {s * o.round_frames, std::min(o.frames, (s + 1) * o.round_frames)};
+}
+
+}  // namespace
+
+void Measurement::begin_pass() {
+  serial_frame_ms_.emplace_back(static_cast<std::size_t>(o_.frames), 0.0);
+  serial_path_ms_.push_back(0);
+  serial_usage_.emplace_back();
+  serial_pass_usage_.emplace_back();
+  pass_probe_min_ = 0;
+  for (Cell& c : cells_) {
+    c.frame_ms.emplace_back(static_cast<std::size_t>(o_.frames), 0.0);
+    c.path_ms.push_back(0);
+    if (!c.child) c.busy_ratio.emplace_back(static_cast<std::size_t>(o_.frames), 0.0);
+  }
+}
+
+// The serial reference (T1) on one segment: a plain loop on this thread, the co-runner paused.
+void Measurement::run_serial_segment(std::size_t round, int segment, double probe) {
   const auto n = static_cast<ItemId>(wl_.model.surfaces.size());
-  std::vector<double> per_frame;
-  double total = 0;
-  if (o_.pin) pinning_.pin_this_thread(0);
+  const auto [first, last] = segment_frames(o_, segment);
+  pin_as(0);
   co_runner_.pause();  // T1 is the undisturbed reference (no-op without --interference)
-  const double probe_before = nz::probe_ns_per_million_steps();  // the pass's thread (its core, too, with --pin)
   const nz::ProcSample before = sample();
   const nz::PassMeter meter;
-  for (int f = 0; f < o_.frames; ++f) {
+  double total = 0;
+  for (int f = first; f < last; ++f) {
     const auto t0 = std::chrono::steady_clock::now();
     for (ItemId id = 0; id < n; ++id) tess_.run(f, id, 0);
     const double ms = ms_since(t0);
-    per_frame.push_back(ms);
+    // The serial loop runs once per P in each segment: the pass's figures are the mean of those runs.
+    serial_frame_ms_.back()[static_cast<std::size_t>(f)] += ms / static_cast<double>(ps_.size());
     total += ms;
   }
-  serial_pass_usage_.push_back(meter.stop());
-  serial_usage_.push_back(nz::usage_between(before, sample()));
-  // The smaller of the two: a time slice lost during one probe inflates it, not the core's speed.
-  serial_probe_.push_back(std::min(probe_before, nz::probe_ns_per_million_steps()));
+  serial_pass_usage_.back() += meter.stop();
+  serial_usage_.back() += nz::usage_between(before, sample());
   co_runner_.resume();
-  if (o_.pin) pinning_.unpin_this_thread();
-  serial_path_ms_.push_back(total);
-  serial_frame_ms_.push_back(per_frame);
+  unpin_caller();
+  serial_path_ms_.back() += total / static_cast<double>(ps_.size());
+  serial_rounds_.add(round, total, probe, segment);
+  pass_probe_min_ = pass_probe_min_ > 0 ? std::min(pass_probe_min_, probe) : probe;
 }
 
-// One path of an in-process scheduler: every item recorded for the exactly-once audit.
-void Measurement::run_cell_path(Cell& c) {
-  if (c.child) return run_child_path(c);
-  std::vector<double> per_frame, ratios;
-  double total = 0;
+// One segment of an in-process scheduler: every item recorded for the exactly-once audit; every frame timed by
+// this thread's clock around run_frame and the planted work, the audits after the clock stops.
+void Measurement::run_cell_segment(Cell& c, std::size_t round, int segment, double probe) {
+  if (c.child) return run_child_segment(c, round, segment, probe);
+  const auto [first, last] = segment_frames(o_, segment);
+  double total = 0, planted_total = 0;
   const nz::ProcSample before = sample();
-  for (int f = 0; f < o_.frames; ++f) {
+  for (int f = first; f < last; ++f) {
     auto item = [&](ItemId id, WorkerId w) {
       pin_as(w);
       runs_.record(id);
       tess_.run(f, id, w);
     };
+    const auto t0 = std::chrono::steady_clock::now();
     const FrameStats& st = c.instance->run_frame(item);
+    const auto t_frame = std::chrono::steady_clock::now();
+    if (!c.planted_steps.empty()) nz::probe_ns_per_million_steps(c.planted_steps[static_cast<std::size_t>(f)]);
+    const auto t1 = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    const double planted_ms = std::chrono::duration<double, std::milli>(t1 - t_frame).count();
+    const double own_ms = static_cast<double>(st.wall_ns) / 1e6;
+    const double gap = std::fabs(ms - planted_ms - own_ms);
+    c.clock_gap_max_ms = std::max(c.clock_gap_max_ms, gap);
+    if (gap > kClockGapBoundMs + 0.05 * own_ms) ++c.clock_gap_frames;
     std::vector<double> busy;
     for (const auto& w : st.workers) busy.push_back(static_cast<double>(w.busy_ns));
-    ratios.push_back(sc::load_ratio(busy));
+    c.busy_ratio.back()[static_cast<std::size_t>(f)] = sc::load_ratio(busy);
     const ExecutionAudit audit = runs_.audit_and_reset();
     const std::uint64_t bad = tess_.count_inconsistent();
-    const double ms = account_frame(
-        c, f, {st, audit, tess_.frame_triangles(), bad, bad ? tess_.first_inconsistent() : std::string()},
-        wl_.serial_triangles[f]);
-    per_frame.push_back(ms);
+    account_frame(c, f, {st, audit, tess_.frame_triangles(), bad, bad ? tess_.first_inconsistent() : std::string()},
+                  wl_.serial_triangles[static_cast<std::size_t>(f)]);
+    c.frame_ms.back()[static_cast<std::size_t>(f)] = ms;
     total += ms;
+    planted_total += planted_ms;
   }
   c.usage += nz::usage_between(before, sample());
   unpin_caller();
-  c.busy_ratio.push_back(std::move(ratios));
-  c.path_ms.push_back(total);
-  c.frame_ms.push_back(per_frame);
+  c.path_ms.back() += total;
+  c.rounds.add(round, total, probe, segment);
+  c.round_planted_ms.push_back(planted_total);
 }
 
-// openmp-static-steal: the child runs the whole path (llvm_openmp_child.hpp); the same accounting and the
-// same audits, from what it reports. Its CPU time is ours, not another process's, for the noise monitor.
-void Measurement::run_child_path(Cell& c) {
-  std::vector<double> per_frame;
+// openmp-static-steal: the child runs the segment (llvm_openmp_child.hpp); the same accounting and the same
+// audits, from what it reports. Its frames are timed by its own clock: this process sees only the exchange. Its
+// CPU time is ours, not another process's, for the noise monitor.
+void Measurement::run_child_segment(Cell& c, std::size_t round, int segment, double probe) {
+  const auto [first, last] = segment_frames(o_, segment);
   double total = 0;
   const nz::ProcSample before = sample();
   const std::uint64_t child_ticks = c.child->cpu_ticks();
-  const std::vector<sc::ChildFrame> frames = c.child->run_path();
+  const std::vector<sc::ChildFrame> frames = c.child->run_frames(first, last);
   nz::Usage usage = nz::usage_between(before, sample());
   usage.self_ticks += c.child->cpu_ticks() - child_ticks;
   c.usage += usage;
-  for (int f = 0; f < o_.frames; ++f) {
-    const sc::ChildFrame& cf = frames[static_cast<std::size_t>(f)];
+  for (int f = first; f < last; ++f) {
+    const sc::ChildFrame& cf = frames[static_cast<std::size_t>(f - first)];
     const double ms = account_frame(c, f, {cf.stats, cf.audit, cf.triangles, cf.inconsistent, ""},
                                     wl_.serial_triangles[static_cast<std::size_t>(f)]);
-    per_frame.push_back(ms);
+    c.frame_ms.back()[static_cast<std::size_t>(f)] = ms;
     total += ms;
   }
-  c.path_ms.push_back(total);
-  c.frame_ms.push_back(per_frame);
+  c.path_ms.back() += total;
+  c.rounds.add(round, total, probe, segment);
+  c.round_planted_ms.push_back(0);
+}
+
+// After the first pass: the planted work was sized from the serial frame times over min(P, cores), which
+// overstates a frame's time at P > 1 (the schedulers are not perfectly efficient) and understates what the
+// planted fraction should be. Each planted arm's steps are rescaled by what it realized in the first pass (its
+// planted time over the rest of its time), so that later passes plant the nominal fraction; the realized size
+// over the whole run is measured and reported either way.
+void Measurement::resize_planted_work() {
+  for (Cell& c : cells_) {
+    if (c.role != ArmRole::kPlanted) continue;
+    double planted = 0, rest = 0;
+    for (std::size_t k = 0; k < c.rounds.size(); ++k) {
+      planted += c.round_planted_ms[k];
+      rest += c.rounds.time[k] - c.round_planted_ms[k];
+    }
+    if (!(planted > 0) || !(rest > 0)) continue;
+    const double scale = c.planted / (planted / rest);
+    for (std::uint64_t& steps : c.planted_steps) steps = static_cast<std::uint64_t>(static_cast<double>(steps) * scale);
+  }
+}
+
+// One round: the serial loop and every arm at P once on the segment, in this round's order. Before each arm: a
+// short pause (library runtimes spin a little after a parallel region; let them settle), then the CPU speed
+// probe on this thread — before the arm, so that it cannot depend on which arm runs.
+void Measurement::run_round(std::size_t round, WorkerId p, int segment) {
+  std::vector<Cell*> arms{nullptr};  // nullptr: the serial loop
+  for (Cell& c : cells_) {
+    if (c.workers == p) arms.push_back(&c);
+  }
+  for (std::size_t arm : measure::round_order(arms.size(), o_.seed, round, o_.order)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    pin_as(0);  // pinned runs: the probe on worker 0's CPU, where the serial loop and every P's worker 0 run
+    const double probe = nz::probe_ns_per_million_steps();
+    if (!arms[arm]) {
+      run_serial_segment(round, segment, probe);
+      continue;
+    }
+    Cell& c = *arms[arm];
+    try {
+      run_cell_segment(c, round, segment, probe);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(c.label + " P=" + std::to_string(c.workers) + ": " + e.what());
+    }
+  }
+}
+
+// --repeats auto after the pilot: the spread of every comparison's per-round log-ratio (each cell against the
+// serial loop and against queue-mutex at its P; calibration arms against their base), the 90th percentile of
+// them, and the rounds that decide at that spread with 80 % power (measure::rounds_to_decide: an equivalent pair
+// called equivalent, a change of twice the margin called faster or slower). Only the spread is looked at,
+// never the estimates, so sizing the run does not bias its verdicts.
+int Measurement::passes_from_pilot(double pass_s, std::string& note) const {
+  std::vector<double> sds;
+  auto spread = [&](const measure::ArmRounds& a, const measure::ArmRounds& b) {
+    const measure::PairedResult r = measure::analyze_pairs(measure::pair_rounds(a, b), {.margin = o_.margin,
+                                                           .confidence = 0.95, .adjust_for_probe = o_.adjust, .estimator = o_.estimator});
+    if (r.chosen().valid) sds.push_back(r.chosen().sd);
+  };
+  for (const Cell& c : cells_) {
+    spread(c.rounds, serial_rounds_);
+    for (const Cell& q : cells_) {
+      if (&q != &c && q.workers == c.workers && q.role == ArmRole::kScheduler &&
+          q.scheduler == (c.role == ArmRole::kScheduler ? "queue-mutex" : o_.calibrate_base)) {
+        spread(c.rounds, q.rounds);
+      }
+    }
+  }
+  std::sort(sds.begin(), sds.end());
+  const double sd90 = sds.empty() ? 0.0 : stats::quantile_sorted(sds, 0.9);
+  const double rounds = measure::rounds_to_decide(sd90, o_.margin);
+  const int wanted = static_cast<int>(std::ceil(rounds / segments(o_)));
+  const int fit = static_cast<int>(o_.budget_s / std::max(pass_s, 1e-9));
+  const int passes = std::clamp(wanted, kMinPasses, std::max(kMinPasses, fit));
+  note = "auto: a pilot of " + std::to_string(kPilotPasses) + " passes (" + std::to_string(kPilotPasses * segments(o_)) +
+         " rounds per comparison, " + fixed(pass_s, 1) + " s per pass): per-round log-ratio spread " + fixed(100 * sd90, 2) +
+         " % (90th percentile of " + std::to_string(sds.size()) + " comparisons) -> " +
+         std::to_string(static_cast<int>(std::ceil(rounds))) + " rounds decide against +-" + fixed(100 * o_.margin, 1) +
+         " % with 80 % power; budget " + fixed(o_.budget_s, 0) + " s fits " + std::to_string(fit) +
+         " passes; chose " + std::to_string(passes);
+  return passes;
 }
 
 bool Measurement::run_rounds(Progress& progress, bool auto_repeats, std::string& repeats_note) {
   measure_start_ = sample();
   const auto rounds_start = std::chrono::steady_clock::now();
+  const int segs = segments(o_);
+  for (const Cell& c : cells_) {
+    if (std::find(ps_.begin(), ps_.end(), c.workers) == ps_.end()) ps_.push_back(c.workers);
+  }
+  std::sort(ps_.begin(), ps_.end());
+  if (auto_repeats) o_.repeats = kPilotPasses;
+  progress.set_total(progress_steps(o_));
   for (int r = 0; r < o_.repeats; ++r) {
-    // --repeats auto was chosen from a warm-up on the machine as it was then; when others load it later, the
-    // rounds slow down. Whole rounds only (every series keeps its pairs), never fewer than 5, and stop once
-    // the budget is spent, so the default run stays bounded on a shared machine.
-    if (auto_repeats && r >= 5 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - rounds_start).count() > o_.budget_s) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - rounds_start).count();
+    // The budget is checked at pass boundaries: whole passes only (every arm keeps every frame), never fewer
+    // than kMinPasses.
+    if (auto_repeats && r >= kMinPasses && elapsed > o_.budget_s) {
       repeats_note += "; stopped after " + std::to_string(r) + " of " + std::to_string(o_.repeats) +
-                      " rounds: the budget was spent";
+                      " passes: the budget was spent";
       o_.repeats = r;
       break;
     }
-    const std::string round = "repeat " + std::to_string(r + 1) + "/" + std::to_string(o_.repeats);
-    run_serial_path();
-    progress.step(round + " serial loop: " + fixed(serial_path_ms_.back(), 0) + " ms for the path");
-    for (Cell& c : cells_) {
-      try {
-        run_cell_path(c);
-      } catch (const std::exception& e) {
-        std::cerr << kProgram << ": " << c.scheduler << " P=" << c.workers << ": " << e.what() << '\n';
-        return false;
+    begin_pass();
+    for (int s = 0; s < segs; ++s) {
+      // The P of this segment's rounds, in an order of their own (the arms of different P are never compared
+      // within a round, so each P's round holds only its arms and the serial loop: shorter rounds, closer pairs).
+      const std::size_t segment_id = static_cast<std::size_t>(r) * static_cast<std::size_t>(segs) + static_cast<std::size_t>(s);
+      for (std::size_t pi : measure::round_order(ps_.size(), o_.seed ^ 0x5eedull, segment_id, o_.order)) {
+        const std::size_t round = rounds_done_++;
+        try {
+          run_round(round, ps_[pi], s);
+        } catch (const std::exception& e) {
+          std::cerr << kProgram << ": " << e.what() << '\n';
+          return false;
+        }
       }
-      // Library runtimes spin a little after a parallel region; let them settle before the next scheduler.
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-      progress.step(round + " P=" + std::to_string(c.workers) + " " + c.scheduler + ": " + fixed(c.path_ms.back(), 0) +
-                    " ms (" + fixed(1000.0 * o_.frames / c.path_ms.back(), 1) + " frames/s)");
+      const auto [first, last] = segment_frames(o_, s);
+      progress.step("pass " + std::to_string(r + 1) + "/" + std::to_string(o_.repeats) + ", frames " +
+                    std::to_string(first) + "-" + std::to_string(last - 1) + ": rounds " +
+                    std::to_string(rounds_done_ - ps_.size() + 1) + "-" + std::to_string(rounds_done_) + " (one per P, " +
+                    measure::to_string(o_.order) + " order); serial loop " + fixed(serial_rounds_.time.back(), 1) + " ms");
+    }
+    serial_probe_.push_back(pass_probe_min_);
+    if (r == 0) resize_planted_work();
+    if (auto_repeats && r + 1 == kPilotPasses) {
+      o_.repeats = passes_from_pilot(elapsed_s(rounds_start) / kPilotPasses, repeats_note);
+      progress.set_total(progress_steps(o_));
+      if (!o_.quiet) std::fprintf(stderr, "frontsteal: %s\n", repeats_note.c_str());
     }
   }
   return true;

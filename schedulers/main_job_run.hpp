@@ -1,7 +1,12 @@
-// main_job_run.hpp — the main job's measurement: every scheduler at every P (a Cell each) set up with one
-// untimed warm-up frame, then interleaved rounds — repeat r of the serial loop and of every cell before repeat
-// r+1 of any — so slow drifts of a noisy machine spread over all of them; the --interference co-runner
-// around them; the noise monitor's samples before, during and after.
+// main_job_run.hpp — the main job's measurement: every arm (the serial loop, every scheduler at every P, and
+// under --calibrate the calibration arms) set up with one untimed warm-up frame, then ROUNDS: a round covers one
+// segment of the path (--round-frames frames) at one P and runs the serial loop and every arm at that P once on
+// it, in the order measure/round_order.hpp gives for that round (random by default). A pass is one round per
+// segment and P; --repeats counts passes. Every frame
+// is timed by this object's clock around the scheduler's run_frame (and the planted work of a calibration arm),
+// the scheduler's own wall_ns kept as a cross-check; the CPU speed probe is timed on this thread just before each
+// arm runs (the covariate of measure/paired_analysis.hpp). The --interference co-runner runs around them; the
+// noise monitor samples before, during and after.
 //
 // Roles: the main thread runs the serial loop (T1) and drives the schedulers; each cell's scheduler (or, for
 // openmp-static-steal, its child process) runs the frames. Every frame goes through account_frame
@@ -16,23 +21,32 @@
 
 #include "core/execution_counter.hpp"
 #include "core/thread_pinning.hpp"
-#include "schedulers/interference.hpp"
+#include "measure/interference.hpp"
+#include "measure/noise_monitor.hpp"
+#include "measure/pass_usage.hpp"
 #include "schedulers/main_job_cell.hpp"
 #include "schedulers/main_job_options.hpp"
 #include "schedulers/main_job_progress.hpp"
 #include "schedulers/main_job_workload.hpp"
-#include "schedulers/noise_monitor.hpp"
-#include "schedulers/pass_usage.hpp"
 
 namespace frontsteal::main_job {
 
-// The progress steps of a run: the warm-up, then per repeat the serial loop and every scheduler at every P.
+// Segments of the path: ceil(frames / round_frames). A pass is one round per segment and P.
+int segments(const Options& o);
+// The distinct worker counts of the run (the P of its rounds).
+int distinct_p(const Options& o);
+// The progress steps of a run: the warm-up, then every round.
 std::size_t progress_steps(const Options& o);
+
+// --repeats auto: the pilot's passes, and the fewest passes a run makes.
+inline constexpr int kPilotPasses = 3;
+inline constexpr int kMinPasses = 5;
 
 class Measurement {
  public:
-  // One cell per P in o.threads and scheduler in o.schedulers, nothing started yet.
-  Measurement(Options& o, Workload& wl, FrameTessellator& tess);
+  // One cell per P in o.threads and scheduler in o.schedulers (and the calibration arms), nothing started yet.
+  // `warm` gives the serial frame times the planted work is sized from.
+  Measurement(Options& o, Workload& wl, FrameTessellator& tess, const WarmUp& warm);
 
   // Constructs every cell's scheduler (static partitions computed here, timed) and runs one untimed warm-up
   // frame; openmp-static-steal starts its child per P (it warms up itself). Cells that cannot start are moved
@@ -41,8 +55,10 @@ class Measurement {
   bool start_cells(const sc::WorkloadHints& hints);
   // --interference: starts the co-runner (after the warm-ups). False (after a message) when it cannot start.
   bool start_interference();
-  // The interleaved rounds. Under --repeats auto (`auto_repeats`) whole rounds stop once o.budget_s is spent
-  // (never fewer than 5), noted in `repeats_note`. False (after a message) when a scheduler fails.
+  // The rounds, pass by pass. Under --repeats auto (`auto_repeats`) a pilot of kPilotPasses passes sizes the
+  // run from the spread of the paired log-ratios (measure::rounds_for_power at the margin), within o.budget_s,
+  // and whole passes stop once the budget is spent (never fewer than kMinPasses); noted in `repeats_note`.
+  // False (after a message) when a scheduler fails.
   bool run_rounds(Progress& progress, bool auto_repeats, std::string& repeats_note);
   // The noise monitor's "after" window: a short pause with nothing of ours running; then the co-runner is
   // killed and reaped, so nothing of ours runs while the results are written.
@@ -53,6 +69,7 @@ class Measurement {
   const std::vector<nz::Usage>& serial_usage() const { return serial_usage_; }
   const std::vector<double>& serial_probe() const { return serial_probe_; }
   const std::vector<nz::PassUsage>& serial_pass_usage() const { return serial_pass_usage_; }
+  const measure::ArmRounds& serial_rounds() const { return serial_rounds_; }
   const std::vector<Cell>& cells() const { return cells_; }
   const std::vector<Cell>& not_available() const { return not_available_; }
   const nz::ProcSample& measure_start() const { return measure_start_; }
@@ -65,9 +82,14 @@ class Measurement {
   void pin_as(WorkerId w) const;
   void unpin_caller() const;
   bool start_child(Cell& c);
-  void run_serial_path();
-  void run_cell_path(Cell& c);
-  void run_child_path(Cell& c);
+  void add_calibration_arms(const WarmUp& warm);
+  void resize_planted_work();
+  void run_round(std::size_t round, WorkerId p, int segment);
+  void run_serial_segment(std::size_t round, int segment, double probe);
+  void run_cell_segment(Cell& c, std::size_t round, int segment, double probe);
+  void run_child_segment(Cell& c, std::size_t round, int segment, double probe);
+  void begin_pass();
+  int passes_from_pilot(double pass_s, std::string& note) const;
 
   Options& o_;
   Workload& wl_;
@@ -76,11 +98,15 @@ class Measurement {
   fi::CoRunner co_runner_;
   ExecutionCounter runs_;
   std::vector<Cell> cells_, not_available_;
-  std::vector<double> serial_path_ms_;
-  std::vector<std::vector<double>> serial_frame_ms_;
-  std::vector<nz::Usage> serial_usage_;  // per repeat: the machine while the serial loop ran
-  std::vector<double> serial_probe_;     // per repeat: the CPU speed probe around the serial loop (cpu_speed_probe.hpp)
-  std::vector<nz::PassUsage> serial_pass_usage_;  // per repeat: what the serial loop's thread did (pass_usage.hpp)
+  std::vector<double> serial_path_ms_;               // per pass
+  std::vector<std::vector<double>> serial_frame_ms_;  // [pass][frame]
+  std::vector<nz::Usage> serial_usage_;  // per pass: the machine while the serial loop ran
+  std::vector<double> serial_probe_;     // per pass: the smallest CPU speed probe before its segments
+  std::vector<nz::PassUsage> serial_pass_usage_;  // per pass: what the serial loop's thread did (pass_usage.hpp)
+  measure::ArmRounds serial_rounds_;              // per round: the serial loop's segment time, probe, segment
+  double pass_probe_min_ = 0;                     // the smallest probe before the serial loop's segments this pass
+  std::vector<WorkerId> ps_;                      // the P of the rounds: every P some cell runs at
+  std::size_t rounds_done_ = 0;
   nz::ProcSample measure_start_, measure_end_, at_end_;
 };
 

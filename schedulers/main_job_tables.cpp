@@ -73,8 +73,13 @@ report::Table data_table(const Measured& m, const Analysis& a) {
       row.insert(row.end(), 5, none);
       return;
     }
-    row.insert(row.end(), {num(c->c.ratio.median), num(c->c.ratio.low), num(c->c.ratio.high),
-                           c->reliable ? st::to_string(c->c.verdict) : "unreliable", num(c->c.effect_pct)});
+    const measure::LogInterval& li = c->c.chosen();
+    const std::string verdict = c->reliable ? measure::to_string(c->c.decision) : "unreliable";
+    if (!li.valid) {  // too few rounds: no numbers, only the verdict
+      row.insert(row.end(), {none, none, none, verdict, none});
+      return;
+    }
+    row.insert(row.end(), {num(li.ratio()), num(li.ratio_low()), num(li.ratio_high()), verdict, num(li.effect_pct())});
   };
   for (const Row& r : a.rows) {
     const Cell& c = *r.cell;

@@ -1,5 +1,5 @@
 // main_job_workload.cpp — the main job's workload (main_job_workload.hpp): the scene's preparation, the
-// per-surface tessellation state, the serial warm-up pass and --repeats auto.
+// per-surface tessellation state and the serial warm-up pass.
 #include "schedulers/main_job_workload.hpp"
 
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include <exception>
 #include <iostream>
 
-#include "core/machine_info.hpp"
+#include "measure/machine_info.hpp"
 #include "reporting/build_stamp.hpp"
 #include "reporting/table.hpp"
 
@@ -100,17 +100,6 @@ WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess) {
   }
   w.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - warm_start).count();
   return w;
-}
-
-std::string choose_repeats(Options& o, double warm_s, unsigned cores) {
-  double round_s = warm_s;
-  for (fs::WorkerId p : o.threads) {
-    round_s += o.schedulers.size() * (warm_s / std::min<double>(p, cores) + 0.005);
-  }
-  const int fit = static_cast<int>(o.budget_s / std::max(round_s, 1e-9));
-  o.repeats = std::clamp(fit, 5, 10);
-  return "auto: ~" + report::fixed_text(round_s, 1) + " s per round predicted, budget " +
-         report::fixed_text(o.budget_s, 0) + " s";
 }
 
 }  // namespace frontsteal::main_job

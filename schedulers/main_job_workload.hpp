@@ -1,6 +1,6 @@
 // main_job_workload.hpp — the main job's workload: the scene loaded and prepared once with its camera path
 // (Workload), the per-surface tessellation state every run writes into (FrameTessellator), the serial
-// warm-up pass that sets the reference triangle counts (warm_up), and --repeats auto (choose_repeats).
+// warm-up pass that sets the reference triangle counts (warm_up).
 //
 // Why apart from the main: the measurement (main_job_run.hpp) and the report read the same Workload; how it
 // is made is one concept, the timing loops another.
@@ -65,10 +65,5 @@ struct WarmUp {
 };
 WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess);
 
-// --repeats auto: one round of repeats costs about T1 for the serial loop plus T1 / min(P, cores) per
-// scheduler and P (plus the 5 ms settling pause); the warm-up pass gives T1. Ten repeats when they fit in
-// the budget (the bootstrap interval of a median is informative from about ten pairs), else as many as
-// fit, but never fewer than 5, the count earlier results were measured with. Sets o.repeats; returns the note.
-std::string choose_repeats(Options& o, double warm_s, unsigned cores);
 
 }  // namespace frontsteal::main_job

@@ -4,20 +4,20 @@
 // or PLY. The committed audit of the default scene (tessellate/results/) is its output.
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
-#include <string>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <tuple>
 #include <vector>
 
-#include "core/machine_info.hpp"
+#include "measure/machine_info.hpp"
 #include "reporting/build_stamp.hpp"
 #include "reporting/command_line.hpp"
 #include "reporting/results_dir.hpp"

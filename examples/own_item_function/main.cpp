@@ -7,7 +7,7 @@
 // 2. The same item function through the scheduler interface (frontsteal::schedulers, registry.hpp):
 //    "stealing/Fenced" (the same StealingScheduler behind the interface) against "queue-mutex" (the paper's
 //    global queue), frame after frame, the two interleaved so drift of a shared machine hits both alike.
-//    Frame times: medians with 95 % bootstrap intervals, and the paired ratio (core/paired_comparison.hpp);
+//    Frame times: medians with 95 % bootstrap intervals, and the paired ratio (measure/paired_comparison.hpp);
 //    the noise monitor says whether other processes shared the machine meanwhile.
 // Every frame is checked: each row ran exactly once, and the image's checksum equals the serial one.
 // Exit 0 when every check held, 1 when one failed, 2 on a usage error.
@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "core/paired_comparison.hpp"
 #include "core/stealing_scheduler.hpp"
+#include "measure/noise_monitor.hpp"
+#include "measure/paired_comparison.hpp"
 #include "reporting/command_line.hpp"
-#include "schedulers/noise_monitor.hpp"
 #include "schedulers/registry.hpp"
 
 namespace {

@@ -14,7 +14,7 @@ namespace report = frontsteal::report;
 
 constexpr const char* kDescription = R"(The tessellation workload under LLVM libomp's static_steal, for the main job (frontsteal), which starts it
 as a child process and talks to it over stdin/stdout (protocol in schedulers/llvm_openmp/static_steal_child.cpp).
-Commands on stdin: "path" (run the camera path once, report every frame), "quit".)";
+Commands on stdin: "path" (run the camera path once, report every frame), "frames A B" (frames A .. B-1 only), "quit".)";
 
 // --fault drop:K | dup:K → (kind, K); false when malformed.
 bool parse_fault(const std::string& v, Options::Fault& kind, int& item) {

@@ -35,7 +35,7 @@
 #include <system_error>
 #include <vector>
 
-#include "core/machine_info.hpp"
+#include "measure/machine_info.hpp"
 #include "reporting/command_line.hpp"
 #include "tessellate/benchmarks/brepmesh_measure.hpp"
 #include "tessellate/benchmarks/brepmesh_report.hpp"

@@ -40,7 +40,7 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 
-#include "core/machine_info.hpp"
+#include "measure/machine_info.hpp"
 #include "tessellate/occt_import.hpp"
 #include "tessellate/surface_tessellator.hpp"
 

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <thread>
 
-#include "core/machine_info.hpp"
+#include "measure/machine_info.hpp"
 #include "reporting/build_stamp.hpp"
 #include "reporting/json.hpp"
 #include "reporting/results_dir.hpp"

@@ -15,8 +15,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "measure/proc_file.hpp"
 #include "schedulers/llvm_openmp_child.hpp"
-#include "schedulers/proc_file.hpp"
 #include "tessellate/camera_path.hpp"
 #include "tessellate/scene_generator.hpp"
 #include "tessellate/surface_tessellator.hpp"

@@ -1,5 +1,5 @@
 // cpu_speed_probe.cpp — the probe and the spread diagnosis (cpu_speed_probe.hpp).
-#include "schedulers/cpu_speed_probe.hpp"
+#include "measure/cpu_speed_probe.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <numeric>
 
-#include "schedulers/noise_monitor.hpp"
+#include "measure/noise_monitor.hpp"
 
 namespace frontsteal::noise {
 
@@ -68,7 +68,7 @@ SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std:
   d.same_work_on_cpu = passes.size() == serial_ms.size() && same_work_on_cpu(passes);
   char r[32];
   std::snprintf(r, sizeof r, "%.2f", d.correlation);
-  const std::string probe_says = "a fixed arithmetic loop timed at the edges of each serial pass spread " +
+  const std::string probe_says = "a fixed arithmetic loop timed before each serial pass's segments spread " +
                                  percent(d.probe_spread) + " (correlation with the passes r = " + r + ")";
   std::string work_says;  // what the passes' own threads did, when measured
   if (passes.size() == serial_ms.size() && !passes.empty()) {

@@ -1,4 +1,4 @@
-// interference_test.cpp — the co-runner child (schedulers/interference.hpp) is always reaped: after the
+// interference_test.cpp — the co-runner child (measure/interference.hpp) is always reaped: after the
 // guard's scope, on an exception unwinding through it, and when moved; the flag parser's bad values; the
 // noise monitor counts the co-runner as ours, not as another process. No timing assertions: the child's
 // CPU time is only required to be readable, not to reach its duty.
@@ -11,8 +11,8 @@
 #include <cerrno>
 #include <stdexcept>
 
-#include "schedulers/interference.hpp"
-#include "schedulers/noise_monitor.hpp"
+#include "measure/interference.hpp"
+#include "measure/noise_monitor.hpp"
 
 namespace fi = frontsteal::interference;
 namespace nz = frontsteal::noise;

@@ -1,6 +1,6 @@
 // interference.cpp — the co-runner child process and its guard (interference.hpp).
-#include "schedulers/interference.hpp"
-#include "schedulers/proc_file.hpp"
+#include "measure/interference.hpp"
+#include "measure/proc_file.hpp"
 
 #include <sched.h>
 #include <signal.h>

@@ -9,9 +9,10 @@
 // multiply-add and shift-xor steps (the same instructions every call, no memory traffic, no branches that
 // depend on data), enough of them to keep the multiplier busy, so a busy SMT sibling competing for it slows the
 // probe as a lower clock does — and its wall time per step moves only when the core retires those instructions
-// more slowly, or when the thread loses the core. It is taken twice per pass, at its start and its end, and the
-// smaller of the two counts (a lost time slice inflates one, not the speed of the core); it sees the pass's
-// edges, not its middle.
+// more slowly, or when the thread loses the core. The main job takes it on the harness thread just before every
+// arm of every round (the covariate of paired_analysis.hpp); for the spread diagnosis, the smallest probe taken
+// before the serial loop's segments of a pass stands for that pass (a lost time slice inflates one probe, not the
+// speed of the core).
 //
 // What it cannot see: contention for memory bandwidth or the last-level cache (the probe touches neither). For
 // that, pass_usage.hpp: when every pass did the same work on its CPU (no page fault, no system time, never
@@ -21,14 +22,14 @@
 //
 // The decision (diagnose_spread) is pure, so tests drive it with synthetic repeats; probe_ns_per_million_steps()
 // is the only part that measures, and its checks are a chain the compiler dropped (it would report ~0 ns) and a
-// probe stopped by SIGSTOP that must report the lost time (tests/schedulers/cpu_speed_probe_test.cpp).
+// probe stopped by SIGSTOP that must report the lost time (tests/measure/cpu_speed_probe_test.cpp).
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "schedulers/pass_usage.hpp"
+#include "measure/pass_usage.hpp"
 
 namespace frontsteal::noise {
 

@@ -1,4 +1,8 @@
-// paired_comparison.hpp — is a scheduler ahead of, behind, or level with a reference, at 95 %?
+// paired_comparison.hpp — medians with percentile-bootstrap intervals, and a paired comparison of two series by
+// the median of their per-repeat ratios: what frontsteal-mpi reports for its frame times and latencies, and what
+// the installed example prints. The main job and frontsteal-paper decide their comparisons with
+// paired_analysis.hpp instead (rounds in random order, a robust estimate, verdicts against a margin); the
+// splitmix64 generator and quantile_sorted below serve both.
 //
 // Repeats are interleaved (repeat r of every scheduler runs in the same round as repeat r of the reference),
 // so the slow drift of a shared machine hits both members of a pair alike: the per-repeat ratio
@@ -24,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "core/machine_info.hpp"
+#include "measure/machine_info.hpp"
 
 namespace frontsteal::stats {
 

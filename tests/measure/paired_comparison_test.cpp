@@ -1,5 +1,5 @@
 // paired_comparison_test.cpp — the bootstrap interval and the verdict on data whose answer is known.
-#include "core/paired_comparison.hpp"
+#include "measure/paired_comparison.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,8 +1,8 @@
 // noise_monitor.cpp — parsing /proc and deciding "busy" (noise_monitor.hpp).
-#include "schedulers/noise_monitor.hpp"
+#include "measure/noise_monitor.hpp"
 
-#include "schedulers/interference.hpp"
-#include "schedulers/proc_file.hpp"
+#include "measure/interference.hpp"
+#include "measure/proc_file.hpp"
 
 #include <unistd.h>
 
@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
-#include <filesystem>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 namespace frontsteal::noise {

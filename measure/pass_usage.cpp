@@ -1,5 +1,5 @@
 // pass_usage.cpp — getrusage(RUSAGE_THREAD) around a pass (pass_usage.hpp).
-#include "schedulers/pass_usage.hpp"
+#include "measure/pass_usage.hpp"
 
 namespace frontsteal::noise {
 

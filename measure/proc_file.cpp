@@ -1,5 +1,5 @@
 // proc_file.cpp — open/read a /proc file (proc_file.hpp).
-#include "schedulers/proc_file.hpp"
+#include "measure/proc_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

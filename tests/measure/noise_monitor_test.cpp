@@ -1,7 +1,7 @@
 // noise_monitor_test.cpp — the monitor's decision on synthetic /proc samples: a quiet machine stays quiet
 // (negative control), a loaded one is flagged (positive control), and the parser reads the real files.
-#include "schedulers/noise_monitor.hpp"
-#include "schedulers/proc_file.hpp"
+#include "measure/noise_monitor.hpp"
+#include "measure/proc_file.hpp"
 
 #include <catch2/catch.hpp>
 

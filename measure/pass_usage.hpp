@@ -24,6 +24,16 @@ struct PassUsage {
   long faults = 0;                // minor + major page faults
   long voluntary_switches = 0;    // the thread blocked (a lock, I/O, a sleep)
   long involuntary_switches = 0;  // the scheduler took the CPU away (a tick, another runnable task)
+  // A pass measured in pieces (one per round's segment) is the sum of its pieces.
+  PassUsage& operator+=(const PassUsage& o) {
+    wall_ms += o.wall_ms;
+    user_ms += o.user_ms;
+    system_ms += o.system_ms;
+    faults += o.faults;
+    voluntary_switches += o.voluntary_switches;
+    involuntary_switches += o.involuntary_switches;
+    return *this;
+  }
 };
 
 // Started on the thread that runs the pass; stop() on the same thread.
