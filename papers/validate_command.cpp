@@ -133,7 +133,17 @@ int run_validate_command(int argc, char** argv) {
         ValidationRow r{&s, c, s.name != cal->name, 0, 0};
         r.predicted_ms = predict_path_ms(t, trace_scale, ov, c.scheduler, c.workers, slowdown_of(s, c.workers), o.seed);
         r.baseline_ms = predict_path_ms(t, trace_scale, baseline, c.scheduler, c.workers, {}, o.seed);
+        // The serial loop is the trace's own sum (it runs with the co-runner paused): the ratio needs no scale.
+        r.predicted_vs_serial = r.predicted_ms / (t.path_cost_ns() / 1e6 * trace_scale);
         rows.push_back(r);
+      }
+    }
+    // Ratios to queue-mutex at the same P, from the two predictions of the same set.
+    for (ValidationRow& r : rows) {
+      for (const ValidationRow& q : rows) {
+        if (q.set == r.set && q.cell.workers == r.cell.workers && q.cell.scheduler == "queue-mutex" && &q != &r) {
+          r.predicted_vs_queue = r.predicted_ms / q.predicted_ms;
+        }
       }
     }
     if (rows.empty()) cli.usage_error("--threads: no measured cell at these worker counts");

@@ -40,6 +40,17 @@ MeasuredSet read_measured_set(const std::filesystem::path& file, const std::stri
     c.workers = need(r, "workers").get<WorkerId>();
     c.path_ms = need(r, "path_ms").get<double>();
     c.spread_pct = need(r, "path_spread_pct").get<double>();
+    auto ratio = [](const report::Json& row, const char* key) {
+      MeasuredRatio m;
+      if (!row.contains(key) || !row[key].is_object() || !row[key].contains("ci95_low") || row[key]["ratio"].is_null()) return m;
+      m.ratio = row[key]["ratio"].get<double>();
+      m.low = row[key]["ci95_low"].get<double>();
+      m.high = row[key]["ci95_high"].get<double>();
+      m.valid = true;
+      return m;
+    };
+    c.vs_serial = ratio(r, "vs_serial");
+    c.vs_queue = ratio(r, "vs_queue_mutex");
     s.cells.push_back(c);
   }
   return s;
@@ -78,6 +89,11 @@ double predict_path_ms(const CostTrace& trace, double trace_scale, const Overhea
 double error_pct(double predicted, double measured) {
   if (!(measured > 0)) throw std::invalid_argument("error_pct: the measured value must be positive");
   return 100.0 * (predicted - measured) / measured;
+}
+
+double interval_error_pct(double predicted, const MeasuredRatio& m) {
+  if (predicted >= m.low && predicted <= m.high) return 0;
+  return error_pct(predicted, predicted < m.low ? m.low : m.high);
 }
 
 ErrorSummary summarize_errors(const std::vector<double>& e) {

@@ -9,6 +9,12 @@
 // that shares its core (worker 0, pinned) 1 / (1 − s) slower.
 //
 // Error of a cell: 100 × (predicted − measured) / measured, path times (median of the repeats).
+//
+// Ratios, which survive a machine whose speed changes (main-job JSON schema 3): per cell the paired ratio of its
+// time to the serial loop's and to queue-mutex's at the same P, with the 95 % interval the main job measured;
+// predicted as the ratio of two simulated times. The trace scale cancels in a ratio, so every set is held out.
+// Two errors per ratio: against the point estimate, and against the interval (0 inside it, else the distance to
+// the nearer bound, relative to that bound).
 #pragma once
 
 #include <filesystem>
@@ -23,12 +29,19 @@
 
 namespace frontsteal::papers {
 
+// A paired ratio the main job measured, with its 95 % interval (valid: the file had one).
+struct MeasuredRatio {
+  double ratio = 0, low = 0, high = 0;
+  bool valid = false;
+};
+
 // One scheduler at one P of a main-job run.
 struct MeasuredCell {
   std::string scheduler;
   WorkerId workers = 0;
   double path_ms = 0;     // median of the repeats
   double spread_pct = 0;  // the repeats' spread (max/min − 1), as the main job reports it
+  MeasuredRatio vs_serial, vs_queue;  // T_P / T1 and T_P / T_queue-mutex, paired by round (schema 3)
 };
 
 // One frontsteal.json: a path, with or without interference.
@@ -58,6 +71,8 @@ double predict_path_ms(const CostTrace& trace, double trace_scale, const Overhea
                        std::uint64_t seed);
 
 double error_pct(double predicted, double measured);  // throws std::invalid_argument when measured ≤ 0
+// 0 when `predicted` lies inside the measured interval, else its error against the nearer bound.
+double interval_error_pct(double predicted, const MeasuredRatio& measured);
 
 struct ErrorSummary {
   std::size_t cells = 0;

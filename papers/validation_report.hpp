@@ -19,6 +19,7 @@ struct ValidationRow {
   MeasuredCell cell;
   bool held_out;
   double predicted_ms, baseline_ms;
+  double predicted_vs_serial = 0, predicted_vs_queue = 0;  // predicted ratios (0: not predicted)
 };
 
 struct ValidationRun {
