@@ -27,7 +27,7 @@ install(EXPORT frontsteal-targets NAMESPACE frontsteal:: DESTINATION ${FRONTSTEA
 foreach(_dir core schedulers tessellate reporting measure)
   file(GLOB _headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${_dir}/*.hpp)
   list(FILTER _headers EXCLUDE REGEX "/(occt_import|isolated_import)\\.hpp$")
-  list(FILTER _headers EXCLUDE REGEX "/(main_job_[a-z_]+|calibration_summary)\\.hpp$")  # the programs' pieces: not a library
+  list(FILTER _headers EXCLUDE REGEX "/(main_job_[a-z_]+|calibration_summary|rounds_json)\\.hpp$")  # the programs' pieces: not a library
   install(FILES ${_headers} DESTINATION ${FRONTSTEAL_INSTALL_INCLUDEDIR}/${_dir})
 endforeach()
 

@@ -9,24 +9,13 @@
 #include <stdexcept>
 
 #include "reporting/table.hpp"
+#include "schedulers/rounds_json.hpp"
 
 namespace frontsteal::main_job {
 
 namespace {
 
 std::string fixed(double v, int digits) { return report::fixed_text(v, digits); }
-
-measure::ArmRounds read_rounds(const report::Json& j) {
-  measure::ArmRounds r;
-  const auto& ms = j.at("ms");
-  const auto& probe = j.at("probe_ns_per_million_steps");
-  const auto& seg = j.at("segment");
-  const bool ids = j.contains("round");
-  for (std::size_t k = 0; k < ms.size(); ++k) {
-    r.add(ids ? j["round"][k].get<std::size_t>() : k, ms[k].get<double>(), probe[k].get<double>(), seg[k].get<int>());
-  }
-  return r;
-}
 
 }  // namespace
 
@@ -52,8 +41,8 @@ std::vector<CalibrationSeries> read_calibration_file(const std::string& path) {
       s.workers = a.at("workers").get<unsigned>();
       s.nominal = a.at("planted_pct").get<double>() / 100;
       s.realized = a.at("realized_pct").get<double>() / 100;
-      s.pairs = measure::pair_rounds(read_rounds(a.at("rounds").at("candidate")),
-                                     read_rounds(a.at("rounds").at("reference")));
+      s.pairs = measure::pair_rounds(rounds_from_json(a.at("rounds").at("candidate")),
+                                     rounds_from_json(a.at("rounds").at("reference")));
       out.push_back(std::move(s));
     } catch (const std::exception& e) {
       throw std::runtime_error(path + ": a calibration arm lacks its data: " + e.what());

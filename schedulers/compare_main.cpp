@@ -11,6 +11,7 @@
 #include "reporting/command_line.hpp"
 #include "reporting/json.hpp"
 #include "reporting/table.hpp"
+#include "schedulers/rounds_json.hpp"
 
 namespace {
 
@@ -31,11 +32,7 @@ bool find_rounds(const Json& doc, const std::string& arm, ms::ArmRounds& out) {
     }
   }
   if (!rounds) return false;
-  const bool ids = rounds->contains("round");  // files without round ids: one round per entry, in order
-  for (std::size_t k = 0; k < rounds->at("ms").size(); ++k) {
-    out.add(ids ? (*rounds)["round"][k].get<std::size_t>() : k, (*rounds)["ms"][k].get<double>(),
-            (*rounds)["probe_ns_per_million_steps"][k].get<double>(), (*rounds)["segment"][k].get<int>());
-  }
+  out = frontsteal::main_job::rounds_from_json(*rounds);
   return true;
 }
 

@@ -116,7 +116,7 @@ void judge_rows(const Measured& m, Analysis& a) {
                                  " % asked: the interference was not what the run says");
     }
   }
-  const measure::Settings settings{.margin = o.margin, .confidence = 0.95, .adjust_for_probe = o.adjust, .estimator = o.estimator};
+  const measure::Settings settings = analysis_settings(o);
   auto judge = [&](const Cell& cand, const measure::ArmRounds& reference, nz::Usage usage, bool reference_failed) {
     ShownComparison sc_;
     sc_.c = measure::analyze_pairs(measure::pair_rounds(cand.rounds, reference), settings);
@@ -236,7 +236,7 @@ std::size_t rows_rounds(const Analysis& a) { return a.rows.empty() ? 0 : a.rows.
 // fastest non-stealing one at that P by its ratio to the serial loop), one sentence each.
 void short_answer(const Measured& m, Analysis& a) {
   const Options& o = m.o;
-  const measure::Settings settings{.margin = o.margin, .confidence = 0.95, .adjust_for_probe = o.adjust, .estimator = o.estimator};
+  const measure::Settings settings = analysis_settings(o);
   std::vector<WorkerId> ps;
   for (const Row& r : a.rows) {
     if (std::find(ps.begin(), ps.end(), r.cell->workers) == ps.end()) ps.push_back(r.cell->workers);

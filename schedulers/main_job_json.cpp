@@ -5,6 +5,7 @@
 
 #include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
+#include "schedulers/rounds_json.hpp"
 
 namespace frontsteal::main_job {
 
@@ -16,9 +17,6 @@ using report::Json;
 // data, each comparison's raw and adjusted interval); 2: the common header of reporting/.
 constexpr int kSchemaVersion = 3;
 
-Json rounds_json(const measure::ArmRounds& r) {
-  return {{"round", r.round}, {"ms", r.time}, {"probe_ns_per_million_steps", r.probe}, {"segment", r.block}};
-}
 
 Json usage_json(const nz::Usage& u, const nz::Thresholds& t) {
   return {{"wall_s", u.wall_s}, {"windows", u.windows}, {"ticks", u.total_ticks}, {"other_share", u.other_share()},

@@ -57,6 +57,12 @@ struct Options {
 // The hardware threads of this machine (at least 1): the default --threads go up to it, and twice it.
 unsigned hardware_cores();
 
+// The analysis settings the options ask for (--margin, --no-adjust, --estimator): every comparison of the run
+// is made with these.
+inline measure::Settings analysis_settings(const Options& o) {
+  return {.margin = o.margin, .confidence = 0.95, .adjust_for_probe = o.adjust, .estimator = o.estimator};
+}
+
 // Parses frontsteal's command line. --help prints and exits 0, --list prints the schedulers and exits 0, a
 // mistake exits 2 naming the flag. The result is complete: threads and schedulers filled in when not given.
 Options parse_options(int argc, char** argv);

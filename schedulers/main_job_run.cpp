@@ -366,8 +366,7 @@ void Measurement::run_round(std::size_t round, WorkerId p, int segment) {
 int Measurement::passes_from_pilot(double pass_s, std::string& note) const {
   std::vector<double> sds;
   auto spread = [&](const measure::ArmRounds& a, const measure::ArmRounds& b) {
-    const measure::PairedResult r = measure::analyze_pairs(measure::pair_rounds(a, b), {.margin = o_.margin,
-                                                           .confidence = 0.95, .adjust_for_probe = o_.adjust, .estimator = o_.estimator});
+    const measure::PairedResult r = measure::analyze_pairs(measure::pair_rounds(a, b), analysis_settings(o_));
     if (r.chosen().valid) sds.push_back(r.chosen().sd);
   };
   for (const Cell& c : cells_) {
