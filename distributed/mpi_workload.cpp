@@ -43,7 +43,8 @@ void build_workload(const Options& o, int rank, Workload& wl) {
   so.settings.pixel_tolerance = o.tolerance;
   wl.scene = tess::make_path_scene(so);  // throws on a bad or empty scene
   wl.n = wl.scene.surfaces();
-  wl.run = [&wl](int f, ItemId id) { return wl.scene.tessellate(f, id, wl.scratch).triangles; };
+  wl.frames.emplace(wl.scene, 1);
+  wl.run = [&wl](int f, ItemId id) { return wl.frames->run(f, id, 0).triangles; };
   if (rank == 0) {  // the serial reference: a plain loop, once, before any scheduler runs
     for (int f = 0; f < o.frames; ++f) {
       std::uint64_t t = 0;

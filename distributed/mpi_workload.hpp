@@ -4,12 +4,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/id_range.hpp"
 #include "distributed/mpi_options.hpp"
 #include "distributed/synthetic_cost.hpp"
+#include "tessellate/frame_workload.hpp"
 #include "tessellate/path_scene.hpp"
 
 namespace frontsteal::mpi {
@@ -20,9 +22,9 @@ struct Workload {
   std::function<std::uint32_t(int frame, ItemId id)> run;       // executes item id of frame f; its triangles
   std::function<std::uint64_t(int frame)> serial_triangles;     // the serial loop's count for frame f (rank 0)
   // Tessellation (empty for synthetic): the scene along frontsteal's default path (tessellate/path_scene.hpp);
-  // a rank runs one item at a time, so one scratch serves it.
+  // a rank runs one item at a time, so one worker's scratch serves it.
   tess::PathScene scene;
-  tess::TessellationScratch scratch;
+  std::optional<tess::FrameWorkload> frames;  // over scene
   std::vector<std::uint64_t> serial;  // per frame, the serial loop's triangles (rank 0)
 };
 

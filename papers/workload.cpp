@@ -31,25 +31,10 @@ tess::PathSceneOptions scene_options(const WorkloadOptions& o) {
 }  // namespace
 
 PathWorkload::PathWorkload(const WorkloadOptions& options)
-    : options_(options), scene_(tess::make_path_scene(scene_options(options))), triangles_(scene_.surfaces(), 0) {
+    : options_(options), scene_(tess::make_path_scene(scene_options(options))), frames_(scene_, 1) {
   // The hints of the main job: patch centres, and the cost estimate of the path's first (overview) view.
   hints_.centres = scene_.centres();
   hints_.costs = scene_.estimated_costs(0);
-  prepare_workers(1);
-}
-
-void PathWorkload::prepare_workers(WorkerId workers) {
-  if (scratch_.size() < workers) scratch_.resize(workers);
-}
-
-void PathWorkload::tessellate(int f, ItemId id, WorkerId w) {
-  triangles_[id] = static_cast<std::uint32_t>(scene_.tessellate(f, id, scratch_[w]).triangles);
-}
-
-std::uint64_t PathWorkload::frame_triangles() const {
-  std::uint64_t t = 0;
-  for (auto x : triangles_) t += x;
-  return t;
 }
 
 CostTrace record_cost_trace(PathWorkload& wl, int passes, const std::string& machine, const std::string& commit,

@@ -20,6 +20,7 @@
 #include "papers/cost_trace.hpp"
 #include "schedulers/scheduler.hpp"
 #include "schedulers/static_scheduler.hpp"
+#include "tessellate/frame_workload.hpp"
 #include "tessellate/path_scene.hpp"
 
 namespace frontsteal::papers {
@@ -36,6 +37,8 @@ struct WorkloadOptions {
 class PathWorkload {
  public:
   explicit PathWorkload(const WorkloadOptions& options);  // throws what load_scene throws
+  PathWorkload(const PathWorkload&) = delete;  // frames_ refers to scene_: neither copied nor moved
+  PathWorkload& operator=(const PathWorkload&) = delete;
 
   ItemId surfaces() const noexcept { return scene_.surfaces(); }
   int frames() const noexcept { return scene_.frames(); }
@@ -43,15 +46,14 @@ class PathWorkload {
   const sched::WorkloadHints& hints() const noexcept { return hints_; }
 
   // Tessellates surface `id` for frame `f` with worker w's scratch (w < the largest P prepared for).
-  void tessellate(int f, ItemId id, WorkerId w);
-  void prepare_workers(WorkerId workers);
-  std::uint64_t frame_triangles() const;
+  void tessellate(int f, ItemId id, WorkerId w) { frames_.run(f, id, w); }
+  void prepare_workers(WorkerId workers) { frames_.prepare_workers(workers); }
+  std::uint64_t frame_triangles() const { return frames_.frame_triangles(); }
 
  private:
   WorkloadOptions options_;
   tess::PathScene scene_;
-  std::vector<tess::TessellationScratch> scratch_;
-  std::vector<std::uint32_t> triangles_;  // per surface, of its last tessellation
+  tess::FrameWorkload frames_;  // over scene_, declared after it
   sched::WorkloadHints hints_;
 };
 

@@ -1,5 +1,5 @@
-// main_job_workload.cpp — the main job's workload (main_job_workload.hpp): the scene's preparation, the
-// per-surface tessellation state and the serial warm-up pass.
+// main_job_workload.cpp — the main job's workload (main_job_workload.hpp): the scene's preparation and the
+// serial warm-up pass.
 #include "schedulers/main_job_workload.hpp"
 
 #include <algorithm>
@@ -43,33 +43,6 @@ PreparedScene prepare_scene(const Options& o, unsigned cores) {
                  load_s);
   }
   return scene;
-}
-
-FrameTessellator::FrameTessellator(Workload& wl, WorkerId max_workers)
-    : wl_(wl), scratch_(std::max<std::size_t>(1, max_workers)), triangles_(wl.model.surfaces.size(), 0),
-      inconsistent_(wl.model.surfaces.size(), 0), capped_(wl.model.surfaces.size(), 0) {}
-
-void FrameTessellator::run(int f, ItemId id, WorkerId w) {
-  const ts::SurfaceResult r = wl_.tessellate(f, id, scratch_[w]);
-  triangles_[id] = static_cast<std::uint32_t>(r.triangles);
-  inconsistent_[id] = r.inconsistencies() > 0;
-  capped_[id] = r.capped;
-}
-
-std::uint64_t FrameTessellator::frame_triangles() const {
-  std::uint64_t t = 0;
-  for (auto x : triangles_) t += x;
-  return t;
-}
-
-std::string FrameTessellator::first_inconsistent() const {
-  const auto it = std::find(inconsistent_.begin(), inconsistent_.end(), std::uint8_t{1});
-  return it == inconsistent_.end() ? std::string()
-                                   : wl_.model.surfaces[static_cast<std::size_t>(it - inconsistent_.begin())].name;
-}
-
-std::uint64_t FrameTessellator::count(const std::vector<std::uint8_t>& flags) {
-  return static_cast<std::uint64_t>(std::count(flags.begin(), flags.end(), std::uint8_t{1}));
 }
 
 WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess) {

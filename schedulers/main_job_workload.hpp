@@ -1,6 +1,5 @@
 // main_job_workload.hpp — the main job's workload: the scene loaded and prepared once with its camera path
-// (Workload), the per-surface tessellation state every run writes into (FrameTessellator), the serial
-// warm-up pass that sets the reference triangle counts (warm_up).
+// (Workload), and the serial warm-up pass that sets the reference triangle counts (warm_up).
 //
 // Why apart from the main: the measurement (main_job_run.hpp) and the report read the same Workload; how it
 // is made is one concept, the timing loops another.
@@ -13,6 +12,7 @@
 #include "core/id_range.hpp"
 #include "schedulers/main_job_options.hpp"
 #include "schedulers/registry.hpp"
+#include "tessellate/frame_workload.hpp"
 #include "tessellate/path_scene.hpp"
 
 namespace frontsteal::main_job {
@@ -35,26 +35,9 @@ struct PreparedScene {
 
 PreparedScene prepare_scene(const Options& o, unsigned cores);
 
-// Tessellates surface `id` for frame `f` with worker w's scratch into the surface's own buffer, and keeps per
-// surface what the audits need: its triangle count, whether the tessellation's own audit (tiling, area,
-// tracing: surface_tessellator.hpp, step 6) failed, and whether the step cap held the deviation bound back.
-class FrameTessellator {
- public:
-  FrameTessellator(Workload& wl, WorkerId max_workers);
-
-  void run(int f, ItemId id, WorkerId w);
-  std::uint64_t frame_triangles() const;
-  std::uint64_t count_inconsistent() const { return count(inconsistent_); }
-  std::uint64_t count_capped() const { return count(capped_); }
-  std::string first_inconsistent() const;  // the name of the first surface whose audit failed ("" if none)
-
- private:
-  static std::uint64_t count(const std::vector<std::uint8_t>& flags);
-  Workload& wl_;
-  std::vector<ts::TessellationScratch> scratch_;
-  std::vector<std::uint32_t> triangles_;
-  std::vector<std::uint8_t> inconsistent_, capped_;
-};
+// Every run writes its items through the one frame workload of tessellate/frame_workload.hpp: the triangle
+// counts and audit flags the audits need, per surface.
+using FrameTessellator = ts::FrameWorkload;
 
 // The serial warm-up pass: the reference triangle counts (and audit counts) per frame into `wl`, and per frame
 // and surface the measured time (ns) and the cost estimate, for the round-robin cost spread

@@ -35,18 +35,14 @@ StaticStealFrames::StaticStealFrames(const Options& o) : o_(o) {
   n_ = static_cast<long long>(scene_.surfaces());
   grain_ = o.grain;
   chunks_ = (n_ + grain_ - 1) / grain_;
-  scratch_.resize(static_cast<std::size_t>(o.workers));
-  triangles_.assign(static_cast<std::size_t>(n_), 0);
-  inconsistent_.assign(static_cast<std::size_t>(n_), 0);
+  frames_.emplace(scene_, static_cast<frontsteal::WorkerId>(o.workers));
   runs_ = std::vector<std::atomic<std::uint32_t>>(static_cast<std::size_t>(n_));
   runner_.assign(static_cast<std::size_t>(n_), -1);
   workers_.resize(static_cast<std::size_t>(o.workers));
 }
 
 void StaticStealFrames::run_item(int f, long long id, int t) {
-  const ts::SurfaceResult r = scene_.tessellate(f, static_cast<frontsteal::ItemId>(id), scratch_[t]);
-  triangles_[id] = static_cast<std::uint32_t>(r.triangles);
-  inconsistent_[id] = r.inconsistencies() > 0;
+  frames_->run(f, static_cast<frontsteal::ItemId>(id), static_cast<frontsteal::WorkerId>(t));
   runs_[id].fetch_add(1, std::memory_order_relaxed);  // read after the region's end (its barrier orders it)
   runner_[id] = t;
   ++workers_[t].items;
@@ -116,8 +112,7 @@ std::string StaticStealFrames::encoded_runs() {
 std::string StaticStealFrames::frame_line(int f) {
   std::fill(runner_.begin(), runner_.end(), -1);
   const std::int64_t wall = run_frame(f);
-  std::uint64_t tri = 0, bad = 0;
-  for (long long i = 0; i < n_; ++i) tri += triangles_[i], bad += inconsistent_[i];
+  const std::uint64_t tri = frames_->frame_triangles(), bad = frames_->count_inconsistent();
   std::string out = "frame " + std::to_string(f) + ' ' + std::to_string(wall) + ' ' + std::to_string(tri) + ' ' +
                     std::to_string(bad) + ' ' + std::to_string(o_.workers);
   for (const Worker& w : workers_) {

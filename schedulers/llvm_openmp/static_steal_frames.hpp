@@ -10,11 +10,13 @@
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/thread_pinning.hpp"
 #include "schedulers/llvm_openmp/child_options.hpp"
+#include "tessellate/frame_workload.hpp"
 #include "tessellate/path_scene.hpp"
 
 namespace frontsteal::llvm_openmp {
@@ -23,6 +25,8 @@ class StaticStealFrames {
  public:
   // Loads and prepares the scene; throws std::runtime_error ("cannot load scene ...") when it cannot.
   explicit StaticStealFrames(const Options& o);
+  StaticStealFrames(const StaticStealFrames&) = delete;  // frames_ refers to scene_
+  StaticStealFrames& operator=(const StaticStealFrames&) = delete;
 
   long long items() const noexcept { return n_; }
   long long chunks() const noexcept { return chunks_; }
@@ -45,10 +49,8 @@ class StaticStealFrames {
 
   Options o_;
   ts::PathScene scene_;  // the parent's views: the same tessellate/path_scene.cpp, from the same options
+  std::optional<ts::FrameWorkload> frames_;  // over scene_, once it is loaded: the parent's items and totals
   long long n_ = 0, grain_ = 1, chunks_ = 0;
-  std::vector<ts::TessellationScratch> scratch_;
-  std::vector<std::uint32_t> triangles_;
-  std::vector<std::uint8_t> inconsistent_;
   std::vector<std::atomic<std::uint32_t>> runs_;
   std::vector<std::int32_t> runner_;  // the thread that last ran item i
   std::vector<Worker> workers_;
