@@ -11,9 +11,11 @@
 //
 // The pieces, one concept each: the options (main_job_options.hpp, CLI11), the workload and its serial
 // warm-up pass (main_job_workload.hpp), the measurement (main_job_run.hpp) and the report
-// (main_job_report.hpp: table, markdown, CSV, JSON and gnuplot through reporting/). This file only joins them.
+// (main_job_report.hpp: table, markdown, CSV, JSON and gnuplot through reporting/). This file only joins them,
+// after handing any other subcommand to its program (subcommands.hpp).
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "measure/noise_monitor.hpp"
 #include "schedulers/main_job_options.hpp"
@@ -21,12 +23,19 @@
 #include "schedulers/main_job_report.hpp"
 #include "schedulers/main_job_run.hpp"
 #include "schedulers/main_job_workload.hpp"
+#include "schedulers/subcommands.hpp"
 
 namespace mj = frontsteal::main_job;
 namespace nz = frontsteal::noise;
 
 int main(int argc, char** argv) {
-  mj::Options o = mj::parse_options(argc, argv);
+  // `frontsteal X ...` runs program X in this process's place (subcommands.hpp); `run` and none are the main job.
+  mj::Dispatch d = mj::dispatch(argc, argv);
+  if (d.exit_status) return *d.exit_status;
+  std::vector<char*> args;
+  for (std::string& a : d.args) args.push_back(a.data());
+  args.push_back(nullptr);
+  mj::Options o = mj::parse_options(static_cast<int>(d.args.size()), args.data());
   const unsigned cores = mj::hardware_cores();
   // The noise monitor's "before" window runs from here to the first measured repeat (loading, warm-up,
   // scheduler set-up: our own work, so anything else that ran meanwhile was someone else's).

@@ -16,6 +16,7 @@
 #include "reporting/command_line.hpp"
 #include "schedulers/llvm_openmp_child.hpp"
 #include "schedulers/registry.hpp"
+#include "schedulers/subcommands.hpp"
 
 namespace frontsteal::main_job {
 
@@ -131,7 +132,7 @@ std::vector<std::string> chosen_schedulers(const std::vector<std::string>& asked
 
 Options parse_options(int argc, char** argv) {
   Options o;
-  report::CommandLine cli(kProgram, kDescription, kFooter);
+  report::CommandLine cli(kProgram, subcommand_help() + kDescription, kFooter);
   bool list = false, no_plot = false;
   cli.flag("--list", list, "list the schedulers and exit");
   cli.option("--scene", o.scene, "teapot | teacup | teaspoon | plant:N[:seed] | path to a model file")->type_name("S");
