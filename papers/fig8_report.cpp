@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "papers/measured_noise.hpp"
 #include "reporting/table.hpp"
 
 namespace frontsteal::papers {
@@ -67,10 +68,8 @@ std::string markdown(const std::vector<SceneCurves>& all, PaperRun& run, const V
   for (const SceneCurves& c : all) {
     md << "\n## `" << c.scene << "` (" << c.surfaces << " surfaces; serial " << fixed(c.serial_fps, 2)
        << " frames/s from the trace)\n\n" << curve_table(c).markdown();
-    md << "\nMeasured, repeat by repeat (path-time ratio, median of the " << o.repeats
-       << " per-repeat ratios [95 % bootstrap interval], verdict at 95 %, effect = change in path time; with 5 "
-          "or fewer repeats the interval runs from the smallest to the largest ratio, so a verdict needs every pair "
-          "to agree: --repeats 10 sharpens it):\n\n" << verdict_table(c).markdown();
+    md << "\nMeasured, round by round (path-time ratio [95 % interval] verdict: " << comparison_method(o.repeats)
+       << "):\n\n" << verdict_table(c).markdown();
     if (!c.meas_ps.empty()) {
       md << "\nWorkers' CPU time over wall × P, measured (below utilization when a worker lost its CPU): ";
       for (std::size_t i = 0; i < c.meas_ps.size(); ++i) {

@@ -11,6 +11,16 @@ namespace {
 std::string fixed(double v, int digits) { return report::fixed_text(v, digits); }
 }  // namespace
 
+std::string comparison_method(int rounds, const measure::Settings& settings) {
+  const std::string m = fixed(100 * settings.margin, 0);
+  return "the " + std::string(measure::to_string(settings.estimator)) + " of the " + std::to_string(rounds) +
+         " per-round path-time log-ratios (rounds in a fresh random order) with its " +
+         fixed(100 * settings.confidence, 0) + " % Student-t interval" +
+         (settings.adjust_for_probe ? ", adjusted for the CPU speed probe when that can be computed" : "") +
+         "; verdict against a ±" + m + " % margin: faster or slower when the whole interval lies beyond it, "
+         "equivalent when it lies inside, inconclusive otherwise; effect = change in path time";
+}
+
 std::string JudgedComparison::text() const {
   const measure::LogInterval& li = c.chosen();
   std::string v = measure::to_string(c.decision);

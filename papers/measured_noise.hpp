@@ -34,6 +34,10 @@ struct JudgedComparison {
   report::Json json() const;
 };
 
+// How a measured comparison of `rounds` rounds is judged, in one sentence fragment for the reports: the
+// estimator and interval of measure/paired_analysis.hpp and the margin of the verdicts.
+std::string comparison_method(int rounds, const measure::Settings& settings = {});
+
 class MeasuredNoise {
  public:
   explicit MeasuredNoise(const MeasurementNoise& sampled, const noise::Thresholds& thresholds = {},

@@ -126,11 +126,9 @@ std::string markdown(const std::vector<Row>& rows, const PaperRun& run, const Ve
     md << "`" << r.scene << "` round robin " << pct_change(r.sim_rr_m.frames_per_s / r.meas_rr.frames_per_s)
        << ", spatial " << pct_change(r.sim_sp_m.frames_per_s / r.meas_sp.frames_per_s) << "; ";
   }
-  md << "\n\nMeasured at P = " << pm << ", repeat by repeat: the path-time ratio spatial / round robin (median of "
-     << "the " << o.repeats << " per-repeat ratios [95 % bootstrap interval], verdict at 95 %, effect = change in "
-        "path time; with 5 or fewer repeats the interval runs from the smallest to the largest ratio: --repeats 10 "
-        "sharpens it), and the workers' CPU time over wall × P (below utilization's busy share when a worker lost "
-        "its CPU):\n\n" << verdict_table(rows).markdown() << '\n';
+  md << "\n\nMeasured at P = " << pm << ", round by round: the path-time ratio spatial / round robin [95 % "
+        "interval] and verdict (" << comparison_method(o.repeats) << "), and the workers' CPU time over wall × P "
+        "(below utilization's busy share when a worker lost its CPU):\n\n" << verdict_table(rows).markdown() << '\n';
   for (const Row& r : rows) md << "`" << r.scene << "`: " << r.noise_line << "\n";
   if (tally.unreliable) md << '\n' << tally.warning();
   md << "\nAbsolute frames/s are not comparable: one core here tessellates these stand-ins far faster than "
