@@ -73,7 +73,7 @@ class FrameRunner {
   OwnerProgress progress_;
   // The request owner's poll: every item when the rma owner needs no progress calls (Open MPI's osc/sm),
   // else at the same interval (--owner-progress): over TCP a poll costs ~4-5 us, and polling after every
-  // 1 us item was measured to leave requests unanswered until the owner ran dry (README "Two hosts").
+  // 1 us item was measured to leave requests unanswered until the owner ran dry (docs/mpi.md, "Two hosts").
   PollGate request_poll_;
   std::vector<int> victims_;
   Defect defects_ = Defect::kNone;

@@ -15,7 +15,7 @@
 // by --calibrate ("owner progress call"): 98 ns on osc/sm, 3.2 us over TCP (5.3 us with mpi_yield_when_idle).
 // auto = off when the library is Open MPI, every rank shares one node and no --mca osc other than sm is set
 // (osc/sm); otherwise every kAutoProgressEveryUs.
-// WHY AN INTERVAL (measured, README "Two hosts"; 2 ranks over TCP, 1 us light items): a call after EVERY item
+// WHY AN INTERVAL (measured, docs/mpi.md "Two hosts"; 2 ranks over TCP, 1 us light items): a call after EVERY item
 // mostly left a thief's operations, and request messages, unanswered until the victim ran dry (0, 3 and 0
 // steals in three 10-frame runs; the cause inside Open MPI was not pinned down), while every 10-200 us gave
 // 21-37 steals, the mean steal latency growing with the interval (~0.5 ms at 10 us, 2.2 ms at 50 us, 7-11 ms

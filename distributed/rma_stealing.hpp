@@ -69,7 +69,7 @@ class RmaOwner {
   // win_sync_f1: F1 is MPI_Win_sync (G3, the standard's memory barrier) followed by a seq_cst fence; without
   // it F1 is the seq_cst fence alone, which is all osc/sm's MPI_Win_sync does besides calling the progress
   // engine — and with mpi_yield_when_idle that progress call yields the CPU on every claim (measured:
-  // milliseconds per claim beside busy processes). See README "Beyond one machine".
+  // milliseconds per claim beside busy processes). See docs/mpi.md.
   RmaOwner(RmaWindow& w, int me, bool win_sync_f1 = true) : w_(w), me_(me), win_sync_f1_(win_sync_f1) {}
 
   std::optional<ItemId> try_claim() {

@@ -6,7 +6,7 @@
 //   deque/push_take                       one Chase–Lev push + take on the owner's end (the raw "take").
 //   skewed/<scheduler>/P                  4,096 items of ~0.2-3 µs with a hot window (1/8 of the items,
 //                                         20x) that moves every frame; time per frame, real time.
-// Ratios are meant to be read within one run (the machines are noisy): see the README's Benchmarks section.
+// Ratios are meant to be read within one run (the machines are noisy): see docs/benchmark.md, "Benchmarks".
 #include <benchmark/benchmark.h>
 
 #include <random>

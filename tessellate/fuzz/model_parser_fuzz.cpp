@@ -1,5 +1,5 @@
 // model_parser_fuzz — libFuzzer target for the native model format's strict parser (clang-14 with Debian's
-// libclang-rt-14-dev; build with `cmake --workflow --preset fuzz`, see the README).
+// libclang-rt-14-dev; build with `cmake --workflow --preset fuzz`, see docs/tessellation.md).
 //
 // Properties checked on every input:
 //   1. parse_model either returns a model or throws ModelError — any other exception, crash, leak or
