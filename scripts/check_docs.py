@@ -10,6 +10,9 @@ environment assignments dropped):
   - cmake / ctest: every --preset must exist in CMakePresets.json; ctest -R REGEX / -L LABEL must select at
     least one test of --build;
   - a script of the repository (scripts/*.py, *.sh): the file must exist.
+And every `folder/path` written in backticks outside code blocks whose first folder is a folder of the
+repository (core/, docs/, schedulers/ ...; not out/ or build/, which runs write) must exist, as a file, a
+folder, or a glob.
 Usage: check_docs.py --build build/release [FILES...]   (default: README.md, docs/*.md, */README.md)
 """
 import argparse
@@ -23,6 +26,7 @@ import subprocess
 import sys
 
 LINK = re.compile(r"\[[^\]]*\]\(([^)\s]+)\)")
+CODE_PATH = re.compile(r"`([a-z_]+/[A-Za-z0-9_./+-]*[A-Za-z0-9_])`")
 BLOCK = re.compile(r"```(?:sh|bash)\n(.*?)```", re.S)
 SPLIT = re.compile(r"\s*(?:&&|\|\||;|\|)\s*")
 
@@ -48,6 +52,17 @@ class Checker:
             self.checked += 1
             if not (path.parent / target.split("#")[0]).exists():
                 self.fail(os.path.relpath(path, self.root), f"link to {target}, which does not exist")
+
+    def code_paths(self, path, text):
+        prose = BLOCK.sub("", text)
+        top = {p.name for p in self.root.iterdir() if p.is_dir() and p.name not in ("build", "out", "Testing")}
+        for target in CODE_PATH.findall(prose):
+            first = target.split("/")[0]
+            if first not in top or "..." in target or "<" in target:
+                continue
+            self.checked += 1
+            if not (self.root / target).exists() and not glob.glob(str(self.root / target)):
+                self.fail(os.path.relpath(path, self.root), f"`{target}` does not exist")
 
     def help_text(self, exe, sub):
         key = (exe, sub)
@@ -118,6 +133,7 @@ class Checker:
     def page(self, path):
         text = path.read_text(encoding="utf-8")
         self.links(path, text)
+        self.code_paths(path, text)
         for block in BLOCK.findall(text):
             joined = re.sub(r"\\\n", " ", block)
             for number, line in enumerate(joined.splitlines(), 1):
