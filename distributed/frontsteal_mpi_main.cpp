@@ -1,4 +1,4 @@
-// frontsteal-mpi — the main job across MPI ranks (issue 18, paper §7): the frame loop of frontsteal with every
+// frontsteal-mpi — the main job across MPI ranks (paper §7): the frame loop of frontsteal with every
 // rank holding the read-only workload (mpi_workload.hpp) and running its items of each frame under four
 // schedulers (frame_runner.hpp: rma, request, central, static), every frame audited (scheduler_run.hpp), the
 // results reported by rank 0 (mpi_report.hpp); --calibrate measures the one-sided latencies (calibration.hpp).

@@ -89,8 +89,7 @@ std::string noise_warning(const std::vector<SchedulerResult>& results) {
 }
 
 report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>& results) {
-  // The common header (program and commit were the first cut's first keys), then the first cut's keys in their
-  // order, then what issue 18's second cut added.
+  // The common header, then the keys in the order readers of older files expect, then the later keys.
   report::Json js = report::document(kProgram, 1, "measured", FRONTSTEAL_GIT_COMMIT);
   js["measured"] = true;
   js["ranks"] = run.ranks;

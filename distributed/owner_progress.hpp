@@ -21,8 +21,8 @@
 // 21-37 steals, the mean steal latency growing with the interval (~0.5 ms at 10 us, 2.2 ms at 50 us, 7-11 ms
 // at 200 us) and the owner's overhead shrinking (frame 236 ms at 10 us, 201 ms at 50 us, 190 ms with no
 // calls; distributed/results/owner_progress_sweep_tcp.txt). 50 us keeps a steal within a few ms.
-// (Until 2026-11-26 this header said stealing over TCP could not be made to work: that was the
-// read-before-flush bug of rma_window.hpp, not the transport.)
+// Stealing over TCP works once every result is read after its flush (rma_window.hpp, G1): a thief that
+// never steals over TCP is a read-before-flush bug, not the transport.
 //
 // A progress THREAD is not an option with this build: osc/pt2pt refuses MPI_THREAD_MULTIPLE in Open MPI 4.1,
 // and a thread spinning in MPI takes a core from the owner on a machine with fewer cores than ranks.

@@ -197,11 +197,11 @@ class RmaWindow {
  private:
   // G1: the operation is complete at origin and target before its value is used; counts its payload bytes.
   // `result` is the operation's result buffer, taken by reference and read only AFTER the flush: until then
-  // MPI may not have written it. (Taking it by value read it before the flush — the bug until 2026-11-26: on
-  // osc/sm, which copies inside MPI_Get, nothing showed; over osc/pt2pt (TCP), where data arrives at the
-  // flush, every Get, fetch-and-op and CAS returned 0, so thieves saw empty lists and never stole, the lock
-  // CAS always "succeeded", and the central counter handed out item 0 forever. window_self_test.hpp now
-  // checks every operation's result at start; plant_read_before_flush() is that bug, for its negative control.)
+  // MPI may not have written it. (Taking it by value would read it before the flush: on osc/sm, which
+  // copies inside MPI_Get, nothing shows; over osc/pt2pt (TCP), where data arrives at the flush, every Get,
+  // fetch-and-op and CAS returns 0, so thieves see empty lists and never steal, the lock CAS always
+  // "succeeds", and the central counter hands out item 0 forever. window_self_test.hpp checks every
+  // operation's result at start; plant_read_before_flush() is that bug, for its negative control.)
   template <class T>
   T completed(int rank, std::size_t bytes, const T& result) {
     T before_flush{};

@@ -3,7 +3,7 @@
 //
 // WHY. The protocols trust each operation's RESULT: a thief decides from T1/T2's Gets whether there is work,
 // from L2's compare-and-swap whether it holds the lock; the termination count and the central counter are
-// fetch-and-ops. Until 2026-11-26 rma_window.hpp read every result before MPI_Win_flush. Open MPI's osc/sm
+// fetch-and-ops. A window that reads a result before MPI_Win_flush passes on one node: Open MPI's osc/sm
 // (one node) copies inside MPI_Get, so nothing showed and every test passed; over osc/pt2pt (TCP, two hosts)
 // the data arrives at the flush, so every result was 0: thieves saw empty lists (no steal over TCP in any
 // run), the lock CAS always "succeeded", the central counter handed out item 0 forever (the "hang"). The

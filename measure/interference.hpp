@@ -1,6 +1,6 @@
 // interference.hpp — a co-runner: a child process that busy-loops a share (the duty cycle) of one core, so the
-// main job can show what another program on the machine does to each scheduler (issue 17 §3: static lists
-// cannot absorb a slowed core; stealing and queues can).
+// main job can show what another program on the machine does to each scheduler (static lists cannot
+// absorb a slowed core; stealing and queues can).
 //
 // The child is made by fork() without exec: it only makes system calls (prctl, sched_setaffinity,
 // clock_gettime, clock_nanosleep, _exit), all async-signal-safe, so forking a process that already runs

@@ -5,8 +5,8 @@
 // faults, system calls, blocking) or the same work ran slower on the hardware. The serial pass is
 // deterministic — the same surfaces, the same steps, the same buffers reused — so when every pass ran in user
 // mode only (no fault, no system time to speak of, never blocked), a slower pass is the hardware's doing: a
-// lower clock, a busy SMT sibling, or caches and memory shared with other tenants of the host. Measured on the
-// 2-vCPU VM of stop 25 (12 passes): 0 page faults, 0 ms system time, 0 voluntary and 2–6 involuntary switches
+// lower clock, a busy SMT sibling, or caches and memory shared with other tenants of the host. Measured on a
+// 2-vCPU VM (12 passes): 0 page faults, 0 ms system time, 0 voluntary and 2–6 involuntary switches
 // per pass, user time within 1 % of wall time — and still one pass 18 % slower than the others.
 #pragma once
 

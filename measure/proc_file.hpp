@@ -4,7 +4,7 @@
 // std::ifstream's buffer turns that into an exception (libstdc++'s basic_filebuf::underflow) that an
 // istreambuf_iterator lets through. The noise monitor's children_ticks() reads the stat file of every process
 // on the machine, so among a busy machine's short-lived processes it met exactly that: a fresh-clone test run
-// (2026-11-26, ctest -j2) ended with "basic_filebuf::underflow error reading the file: No such process", exit
+// (ctest -j2) ended with "basic_filebuf::underflow error reading the file: No such process", exit
 // 134. Every /proc/<pid> read of the measurement layer goes through here.
 #pragma once
 

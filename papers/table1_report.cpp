@@ -90,7 +90,7 @@ report::Table stand_in_table(const std::vector<Row>& rows, Pick pick) {
   return t;
 }
 
-// The measured comparison, repeat by repeat, with CPU time and the noise monitor's line (issue 17).
+// The measured comparison, repeat by repeat, with CPU time and the noise monitor's line.
 report::Table verdict_table(const std::vector<Row>& rows) {
   report::Table t({{"scene", "scene", false}, {"spatial_vs_round_robin", "spatial / round robin [95% CI] verdict", false},
                    {"round_robin_cpu_pct", "cpu round robin"}, {"spatial_cpu_pct", "cpu spatial"}});

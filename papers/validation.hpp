@@ -81,7 +81,7 @@ struct ErrorSummary {
 };
 ErrorSummary summarize_errors(const std::vector<double>& errors_pct);  // throws on an empty list
 
-// The goal of issue 17 §5.
+// The validation goal: median |error| <= 5 %, worst <= 10 %.
 inline bool meets_goal(const ErrorSummary& s) { return s.median_abs_pct <= 5.0 && s.worst_abs_pct <= 10.0; }
 
 // The model without the terms added for validation (affinity, lock wake-up, wake-up skew) and without

@@ -4,7 +4,7 @@
 // main_job_json.hpp, main_job_plots.hpp), all through reporting/.
 //
 // Why apart from the main: the main parses, measures (main_job_run.hpp) and hands over a Measured; how a result
-// is judged and written is here, in named pieces (issue 19 §2).
+// is judged and written is here, in named pieces.
 #pragma once
 
 #include <string>

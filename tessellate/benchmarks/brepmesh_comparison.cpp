@@ -1,5 +1,5 @@
 // brepmesh_comparison — frontsteal's tessellator against Open CASCADE's own mesher, BRepMesh_IncrementalMesh,
-// on real CAD files at the same object-space chordal deviation ε (issue 15 §2, "a second peer").
+// on real CAD files at the same object-space chordal deviation ε: a second peer beside GLU.
 //
 // Per file and ε:
 //   ours      tess::import_cad_file (in-process; timed once, reported apart), prepare_surface per Surface, then

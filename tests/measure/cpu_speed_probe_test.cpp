@@ -63,7 +63,7 @@ TEST_CASE("a probe that moved less than the serial loop: part machine, part not"
 }
 
 TEST_CASE("the same user-mode work in every pass, a steady probe: still the machine", "[cpu_probe]") {
-  // The 2-vCPU VM of stop 25: no fault, no system time, never blocked, and one pass 18 % slower.
+  // A 2-vCPU VM, measured: no fault, no system time, never blocked, and one pass 18 % slower.
   const std::vector<double> serial{523, 517, 614, 538, 527};
   const std::vector<double> probe{2.04e6, 2.05e6, 2.06e6, 2.04e6, 2.05e6};
   std::vector<nz::PassUsage> passes;

@@ -182,7 +182,7 @@ TEST_CASE("stealing and Chase-Lev terminate when single items are left to steal"
   }
 }
 
-// ---- the terms added for validation (issue 17 §5): cache affinity, worker slowdown, wake-up skew, lock wake ----
+// ---- the terms added for validation: cache affinity, worker slowdown, wake-up skew, lock wake ----
 
 TEST_CASE("affinity: the penalty is charged exactly when an item changes worker, and ignoring it is caught") {
   // Queue, P = 2, grain 1, no scheduler costs. Frame 0 (all 10): worker 0 runs {0, 2}, worker 1 {1, 3}; no

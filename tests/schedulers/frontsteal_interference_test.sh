@@ -1,5 +1,5 @@
 #!/bin/sh
-# frontsteal_interference_test.sh — the main job's --interference end to end (issue 17 §3):
+# frontsteal_interference_test.sh — the main job's --interference end to end:
 #   1. a short run with the co-runner pinned says so (stdout, JSON) and leaves no co-runner behind;
 #   2. frontsteal killed with SIGKILL mid-run (no destructor runs) still takes its co-runner with it
 #      (PR_SET_PDEATHSIG): after the kill the co-runner's pid is gone or a zombie (state Z: dead, waiting for

@@ -1,4 +1,4 @@
-// path_spread_test.cpp — the main job's camera paths unbalance round robin as designed (issue 17 §3): the
+// path_spread_test.cpp — the main job's camera paths unbalance round robin as designed: the
 // per-frame ratio max/min of the workers' summed cost, items dealt round robin, is larger on the walkthrough
 // inside the plant and on the zoom that ends on the densest region than on the orbit. Deterministic: from the
 // tessellator's per-surface cost ESTIMATES (estimate_cost), never from wall time. And the dense zoom does what

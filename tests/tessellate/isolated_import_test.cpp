@@ -1,6 +1,6 @@
 // Hostile CAD files through the isolated importer (tessellate/isolated_import.hpp). The files are made here
 // from real ones that bootstrap.sh installs (gmsh's t20_data.step, OCCT's hammer.brep and bearing.iges), each
-// with one defect that made Open CASCADE's readers crash or hang in wave 1: a STEP entity that refers to
+// with one defect that made Open CASCADE's readers crash or hang when read in-process: a STEP entity that refers to
 // itself (SIGSEGV), NaN coordinates (endless loop), a BREP claiming 2·10⁹ curves (endless), a truncated BREP,
 // an IGES file cut at 90 % (SIGSEGV) or at 50 % (imports 43 of 213 faces: must warn), a directory named
 // x.step, and a memory limit below what the reader needs. Each must end in an ImportFailure that names the
