@@ -1,10 +1,11 @@
-// machine_info.hpp — small helpers every results writer shares: the CPU model for the stamp on measured
-// figures, and the median the tables report.
+// machine_info.hpp — small helpers every results writer shares: the CPU model and hardware thread count for
+// the stamp on measured figures, and the median the tables report.
 #pragma once
 
 #include <algorithm>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace frontsteal {
@@ -21,6 +22,9 @@ inline std::string cpu_model() {
   }
   return "unknown CPU";
 }
+
+// The hardware threads this process may run on, at least 1 (std::thread::hardware_concurrency() may say 0).
+inline unsigned hardware_cores() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 // The 1-minute load average from /proc/loadavg, as written there, or "unknown": results files say how busy
 // the machine was while they were measured.

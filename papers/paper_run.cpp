@@ -16,7 +16,6 @@ namespace frontsteal::papers {
 
 namespace sc = frontsteal::sched;
 
-unsigned hardware_cores() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 std::string machine_line() { return cpu_model() + ", " + std::to_string(hardware_cores()) + " hardware threads"; }
 

@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "measure/machine_info.hpp"
 #include "papers/calibration.hpp"
 #include "papers/cost_trace.hpp"
 #include "papers/paper_options.hpp"
@@ -29,7 +30,6 @@ namespace frontsteal::papers {
 
 inline constexpr const char* kPaperProgram = "frontsteal-paper";
 
-unsigned hardware_cores();
 std::string machine_line();                     // "<cpu model>, N hardware threads"
 std::string today();                            // YYYY-MM-DD, UTC
 std::string fixed(double v, int digits);        // "12.35" for (12.345, 2)

@@ -48,7 +48,7 @@ struct Options {
 
 Options parse(int argc, char** argv) {
   Options o;
-  o.greedy.tessellators = std::max(1u, std::thread::hardware_concurrency() - 1);
+  o.greedy.tessellators = std::max(2u, std::thread::hardware_concurrency()) - 1;  // 0 means unknown: one
   o.greedy.updates = 150;
   o.greedy.png_every = 30;
   report::CommandLine cli(kProgram, kDescription, kFooter);

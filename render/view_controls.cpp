@@ -18,6 +18,7 @@ const char* const kViewKeys = R"(  mouse drag (left)    orbit around the target
   V                    next stealing policy (stealing/<Policy>)
   + / -                tessellation tolerance x1.25 / /1.25 (pixels; larger is coarser)
   H                    hide / show this overlay
+  K                    show / fold this key list
   P                    screenshot (to --screenshot FILE, else frontsteal-view-NNNN.png), camera to stdout
   0, Home              reset the camera
   Escape, Q            quit
@@ -60,6 +61,7 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_C: if (press) next_scheduler(s, false); break;
     case GLFW_KEY_V: if (press) next_scheduler(s, true); break;
     case GLFW_KEY_H: if (press) s.overlay = !s.overlay; break;
+    case GLFW_KEY_K: if (press) s.keys_shown = !s.keys_shown; break;
     case GLFW_KEY_P: if (press) s.screenshot = true; break;
     case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
     default: break;

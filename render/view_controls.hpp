@@ -27,6 +27,7 @@ struct ViewControls {
   LiveGreedy& live;
   std::vector<std::string> schedulers;  // what C and V cycle through
   bool overlay = true;                  // H
+  bool keys_shown = false;              // K: the overlay starts with the figures only, keys folded
   bool screenshot = false;              // P: the loop writes one and clears this
   bool dragging = false;
   double last_x = 0, last_y = 0;

@@ -38,7 +38,7 @@ close, Escape, --frames or Ctrl-C; 2 on a usage error; 3 without a display or an
 
 rd::ViewOptions parse(int argc, char** argv) {
   rd::ViewOptions o;
-  o.tessellators = std::max(1u, std::thread::hardware_concurrency() - 1);
+  o.tessellators = std::max(2u, std::thread::hardware_concurrency()) - 1;  // 0 means unknown: one
   std::string size = "960x600";
   bool no_overlay = false;
   report::CommandLine cli(std::string(kProgram), kAbout, std::string("keys:\n") + rd::kViewKeys);

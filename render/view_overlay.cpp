@@ -22,7 +22,8 @@ void OverlayRates::sample(int updates, const LiveCounters& c) {
   steals0_ = c.steals;
 }
 
-void draw_overlay(const OverlayText& text, const LiveGreedy& live, const UpdateRecord& rec, const OverlayRates& rates) {
+OverlaySize draw_overlay(const OverlayText& text, const LiveGreedy& live, const UpdateRecord& rec, const OverlayRates& rates,
+                         bool keys_shown) {
   const LiveCounters c = live.counters();
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.7f);
@@ -48,8 +49,14 @@ void draw_overlay(const OverlayText& text, const LiveGreedy& live, const UpdateR
   }
   if (!text.message.empty()) ImGui::Text("> %s", text.message.c_str());
   ImGui::Separator();
-  ImGui::TextUnformatted(kViewKeys);
+  if (keys_shown) {
+    ImGui::TextUnformatted(kViewKeys);
+  } else {
+    ImGui::TextUnformatted("keys: K shows them, H hides this overlay");
+  }
+  const ImVec2 size = ImGui::GetWindowSize();
   ImGui::End();
+  return {static_cast<int>(size.x), static_cast<int>(size.y)};
 }
 
 }  // namespace frontsteal::render

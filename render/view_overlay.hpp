@@ -1,6 +1,7 @@
 // view_overlay.hpp — frontsteal-view's on-screen overlay (Dear ImGui): scene and renderer, mode, scheduler,
-// tolerance, update rate, tessellation rate, lag, steals per tessellation frame, and the keys. Rates are taken
-// over half a second or more, so the numbers do not flicker with every frame.
+// tolerance, update rate, tessellation rate, lag, steals per tessellation frame, and the keys — folded under one
+// line until K shows them, so the first thing a user sees is the scene and its figures, not a key table over
+// half of it. Rates are taken over half a second or more, so the numbers do not flicker with every frame.
 #pragma once
 
 #include <chrono>
@@ -28,7 +29,11 @@ struct OverlayText {
   std::string message;   // the last action
 };
 
-// Needs an ImGui frame (between ImGui::NewFrame and ImGui::Render).
-void draw_overlay(const OverlayText& text, const LiveGreedy& live, const UpdateRecord& latest, const OverlayRates& rates);
+// Needs an ImGui frame (between ImGui::NewFrame and ImGui::Render). Returns the overlay's size in pixels.
+struct OverlaySize {
+  int width = 0, height = 0;
+};
+OverlaySize draw_overlay(const OverlayText& text, const LiveGreedy& live, const UpdateRecord& latest,
+                         const OverlayRates& rates, bool keys_shown);
 
 }  // namespace frontsteal::render

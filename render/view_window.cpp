@@ -130,7 +130,7 @@ class FrameLoop {
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     text_.message = controls_.message;
-    if (controls_.overlay) draw_overlay(text_, live_, rec, rates_);
+    overlay_size_ = controls_.overlay ? draw_overlay(text_, live_, rec, rates_, controls_.keys_shown) : OverlaySize{};
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (controls_.screenshot || last_screenshot) screenshot(cam, rec);
@@ -145,7 +145,9 @@ class FrameLoop {
     write_png(read_framebuffer(cam.width, cam.height), path);
     std::cout << kProgram << ": screenshot " << path << " update " << rec.update << " camera " << ViewCamera::describe(cam)
               << " tolerance=" << live_.tolerance() << " mode=" << (live_.synchronized() ? "synchronized" : "lagging")
-              << " mean_lag=" << rec.mean_lag << " overlay=" << (controls_.overlay ? "shown" : "hidden") << std::endl;
+              << " mean_lag=" << rec.mean_lag << " overlay=" << (controls_.overlay ? "shown" : "hidden")
+              << " overlay_px=" << overlay_size_.width << 'x' << overlay_size_.height
+              << " keys=" << (controls_.keys_shown ? "shown" : "folded") << std::endl;
     controls_.message = "wrote " + path;
   }
 
@@ -155,6 +157,7 @@ class FrameLoop {
   ViewControls& controls_;
   OverlayText text_;
   OverlayRates rates_;
+  OverlaySize overlay_size_;  // as drawn this update (0x0 when hidden)
   int screenshots_ = 0;
 };
 

@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   for (std::string& a : d.args) args.push_back(a.data());
   args.push_back(nullptr);
   mj::Options o = mj::parse_options(static_cast<int>(d.args.size()), args.data());
-  const unsigned cores = mj::hardware_cores();
+  const unsigned cores = frontsteal::hardware_cores();
   // The noise monitor's "before" window runs from here to the first measured repeat (loading, warm-up,
   // scheduler set-up: our own work, so anything else that ran meanwhile was someone else's).
   const nz::ProcSample at_start = nz::sample_now();

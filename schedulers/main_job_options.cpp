@@ -81,8 +81,6 @@ loaded).)";
 
 }  // namespace
 
-unsigned hardware_cores() { return std::max(1u, std::thread::hardware_concurrency()); }
-
 namespace {
 
 // --list: every scheduler, with the ones the main job does not run marked.

@@ -12,6 +12,7 @@
 
 #include "core/id_range.hpp"
 #include "measure/interference.hpp"
+#include "measure/machine_info.hpp"
 #include "measure/noise_monitor.hpp"
 #include "measure/paired_analysis.hpp"
 #include "measure/round_order.hpp"
@@ -53,9 +54,6 @@ struct Options {
   bool quiet = false;
   ts::PlantedDefect planted_defect = ts::PlantedDefect::none;
 };
-
-// The hardware threads of this machine (at least 1): the default --threads go up to it, and twice it.
-unsigned hardware_cores();
 
 // The analysis settings the options ask for (--margin, --no-adjust, --estimator): every comparison of the run
 // is made with these.

@@ -4,7 +4,7 @@
 # printed (view_reference: silhouette IoU >= 0.97, as greedy_renderer_test), two negative controls that must fail
 # the same check (the camera before the input, and the view turned 40 degrees), and the exit paths: WM_DELETE_WINDOW
 # (a window manager's close button) -> 0, Escape -> 0, SIGINT -> 0, no DISPLAY or one with no server -> 3, an
-# unknown flag -> 2.
+# unknown flag -> 2; and the first impression: the overlay opens small, its key list folded until K.
 #
 # usage: view_xvfb_test.sh FRONTSTEAL_VIEW VIEW_REFERENCE X11_CLOSE_WINDOW WORK_DIR
 set -u
@@ -42,7 +42,7 @@ rc=$?
 # Starts the viewer in the background (pid in $pid) and waits for its window (id in $wid).
 start_viewer() {  # $1: output stem, rest: flags
   stem=$1; shift
-  "$view" --scene teapot --size 320x240 --tessellators 1 --rate 30 "$@" > "$work/$stem.out" 2>&1 &
+  "$view" --scene teapot --size "${view_size:-320x240}" --tessellators 1 --rate 30 "$@" > "$work/$stem.out" 2>&1 &
   pid=$!
   wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^frontsteal-view$' | head -n 1)
   [ -n "$wid" ] || { cat "$work/$stem.out"; fail "$stem: no window"; kill -KILL "$pid" 2>/dev/null; wait "$pid"; return 1; }
@@ -95,7 +95,40 @@ if start_viewer keys --no-overlay --screenshot "$work/view.png"; then
   fi
 fi
 
-# --- 2. Escape -------------------------------------------------------------------------------------------------
+# --- 2. First impression: at the default 960x600 the overlay opens with the figures and one line of keys; K shows
+# the key list. Measured by the overlay's own size on each screenshot line; the shown list is the control that the
+# measure sees a key table over the scene (it must cover far more).
+view_size=960x600
+if start_viewer overlay --screenshot "$work/overlay.png"; then
+  view_size=
+  xdotool windowfocus --sync "$wid" 2>/dev/null
+  sleep 1
+  xdotool key p
+  i=0
+  while [ "$(grep -c "screenshot" "$work/overlay.out")" -lt 1 ] && [ $i -lt 300 ]; do sleep 0.1; i=$((i + 1)); done
+  xdotool key k
+  sleep 1
+  xdotool key p
+  i=0
+  while [ "$(grep -c "screenshot" "$work/overlay.out")" -lt 2 ] && [ $i -lt 300 ]; do sleep 0.1; i=$((i + 1)); done
+  xdotool key Escape
+  wait_exit
+  area() { grep "screenshot" "$work/overlay.out" | sed -n "$1p" | sed 's/.*overlay_px=\([0-9]*\)x\([0-9]*\) keys=\([a-z]*\).*/\1 \2 \3/'; }
+  set -- $(area 1) $(area 2)
+  if [ $# -ne 6 ]; then
+    cat "$work/overlay.out"; fail "overlay: no size on the screenshot lines"
+  else
+    folded=$(( $1 * $2 * 100 / (960 * 600) )) shown=$(( $4 * $5 * 100 / (960 * 600) ))
+    echo "overlay at start: $1x$2 px ($folded % of the window, keys $3); after K: $4x$5 px ($shown %, keys $6)"
+    [ "$3" = folded ] && [ "$folded" -le 25 ] && pass "overlay at start: figures and one line of keys, $folded % of the window" \
+      || fail "overlay at start covers $folded % (keys $3), want at most 25 % with the keys folded"
+    [ "$6" = shown ] && [ "$shown" -ge 35 ] && pass "control: K shows the key list, $shown % of the window" \
+      || fail "control: after K the overlay covers $shown % (keys $6), want at least 35 %"
+  fi
+fi
+view_size=
+
+# --- 3. Escape -------------------------------------------------------------------------------------------------
 if start_viewer escape; then
   xdotool windowfocus --sync "$wid" 2>/dev/null
   xdotool key Escape
@@ -103,7 +136,7 @@ if start_viewer escape; then
   [ $rc -eq 0 ] && grep -q "window closed" "$work/escape.out" && pass "Escape: exit 0" || { cat "$work/escape.out"; fail "Escape: exit $rc, want 0"; }
 fi
 
-# --- 3. Ctrl-C (SIGINT) ----------------------------------------------------------------------------------------
+# --- 4. Ctrl-C (SIGINT) ----------------------------------------------------------------------------------------
 if start_viewer sigint; then
   kill -INT "$pid"
   wait_exit
