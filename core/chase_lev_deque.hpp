@@ -42,7 +42,7 @@
 //   comes first makes the other side see its store. A lone last element needs no fence: then both sides go
 //   through a CAS on top, and exactly one wins.
 //   A failed CAS (K6, S5) loads with relaxed order (labelled_access.hpp): the loser returns without the element.
-// ERRATUM (what we checked; details and sources in models_check/results/chaselev.md)
+// ERRATUM (what we checked; details and sources in results/models_check/chaselev.md)
 //   The one bug in the published C11 code that we found documented is fixed in the benchmark suite of
 //   CDSChecker's authors (Norris & Demsky, OOPSLA'13; github.com/computersforpeace/model-checker-benchmarks,
 //   chase-lev-deque-bugfix/deque.c, "Bug in paper...should have next line..."): after push resizes the buffer it

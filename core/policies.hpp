@@ -125,7 +125,7 @@ struct Asymmetric {
 // Minimal: the weakest orders under which every model-checking scenario passes. Derived by
 // `frontsteal-modelcheck --derive-minimal Fenced` (greedy one-step weakening while every scenario passes) and
 // certified on every CI run: each one-step weakening of it is killed by some scenario
-// (models_check/results/). "Weakest" means no single site can be weakened one step, not a global optimum,
+// (results/models_check/). "Weakest" means no single site can be weakened one step, not a global optimum,
 // and it rests on Relacy's bounded search. Why each non-relaxed site is needed:
 //   F1, F2 seq_cst   the Dekker handshake (O1 before O2, T3 before T4): without either, Paper's duplicate
 //   O4 release / T4 acquire   publish the owner's Front (O3) to the thief's re-read (T5)

@@ -20,7 +20,7 @@
 // steals in three 10-frame runs; the cause inside Open MPI was not pinned down), while every 10-200 us gave
 // 21-37 steals, the mean steal latency growing with the interval (~0.5 ms at 10 us, 2.2 ms at 50 us, 7-11 ms
 // at 200 us) and the owner's overhead shrinking (frame 236 ms at 10 us, 201 ms at 50 us, 190 ms with no
-// calls; distributed/results/owner_progress_sweep_tcp.txt). 50 us keeps a steal within a few ms.
+// calls; results/distributed/owner_progress_sweep_tcp.txt). 50 us keeps a steal within a few ms.
 // Stealing over TCP works once every result is read after its flush (rma_window.hpp, G1): a thief that
 // never steals over TCP is a read-before-flush bug, not the transport.
 //

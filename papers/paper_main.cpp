@@ -2,7 +2,7 @@
 // traces through the scheduler models (simulator.hpp) for more processors than this machine has.
 //
 // One subcommand per artifact; each writes <name>.md, <name>.csv, <name>.json and <name>.png (gnuplot) into
-// --out (default papers/results), stamped with the machine, the commit and the date. Measured figures come
+// --out (default results/papers), stamped with the machine, the commit and the date. Measured figures come
 // from the real schedulers on this machine; simulated ones from the models; every table and plot says which.
 //
 // This file only parses (papers/paper_options.hpp), picks the subcommand and hands over a PaperRun

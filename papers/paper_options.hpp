@@ -16,7 +16,7 @@ namespace frontsteal::papers {
 
 struct Options {
   std::string command;                // the subcommand given
-  std::string out = "papers/results";
+  std::string out = "results/papers";
   std::vector<std::string> scenes;    // empty: the command's stand-ins
   std::string scene = "plant:5302";   // trace
   std::string trace, calibration;

@@ -33,7 +33,7 @@ constexpr const char* kFooter =
     "could not be read or written, 2 usage.";
 
 struct Options {
-  std::string study, calibrate_on = "orbit-then-zoom-none", traces, calibration, out = "papers/results";
+  std::string study, calibrate_on = "orbit-then-zoom-none", traces, calibration, out = "results/papers";
   int passes = 5, affinity_repeats = 6;
   std::vector<unsigned> threads{1, 2};
   std::uint64_t seed = 1;

@@ -13,7 +13,7 @@ environment assignments dropped):
 And every `folder/path` written in backticks outside code blocks whose first folder is a folder of the
 repository (core/, docs/, schedulers/ ...; not out/ or build/, which runs write) must exist, as a file, a
 folder, or a glob.
-Usage: check_docs.py --build build/release [FILES...]   (default: README.md, docs/*.md, */README.md)
+Usage: check_docs.py --build build/release [FILES...]   (default: README.md, docs/*.md, */README.md, results/*/README.md)
 """
 import argparse
 import glob
@@ -150,7 +150,8 @@ def main():
     args = parser.parse_args()
     root = pathlib.Path(args.root).resolve()
     files = args.files or ["README.md", *sorted(glob.glob("docs/*.md", root_dir=root)),
-                           *sorted(glob.glob("*/README.md", root_dir=root))]
+                           *sorted(glob.glob("*/README.md", root_dir=root)),
+                           *sorted(glob.glob("results/*/README.md", root_dir=root))]
     checker = Checker(root, pathlib.Path(os.path.relpath(pathlib.Path(args.build).resolve(), root)))
     for f in files:
         checker.page((root / f).resolve())

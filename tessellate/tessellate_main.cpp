@@ -1,7 +1,7 @@
 // tessellate_main.cpp — frontsteal-tessellate: the tessellator alone, on a scene and its camera path. It
 // audits every frame (the per-surface audit of surface_tessellator.hpp, step 6: pieces tiled exactly, areas
 // equal to the trim loops', tracing complete; and surfaces held at the step cap), and exports a frame as OBJ
-// or PLY. The committed audit of the default scene (tessellate/results/) is its output.
+// or PLY. The committed audit of the default scene (results/tessellate/) is its output.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #!/bin/sh
-# run_proofs.sh — runs every SPIN proof of stealing.pml and writes models_check/results/spin.md: a table of
+# run_proofs.sh — runs every SPIN proof of stealing.pml and writes results/models_check/spin.md: a table of
 # verdicts, states stored, memory and time, and readable counterexample trails (site labels on every step).
 #
 #   models_check/spin/run_proofs.sh [WORKDIR]      (default WORKDIR: build/spin-proofs; about 20 minutes on 2 cores)
@@ -8,8 +8,8 @@ set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 work=${1:-$root/build/spin-proofs}
-report=$root/models_check/results/spin.md
-mkdir -p "$work" "$root/models_check/results"
+report=$root/results/models_check/spin.md
+mkdir -p "$work" "$root/results/models_check"
 rows=$work/rows.md
 : >"$rows"
 status=0

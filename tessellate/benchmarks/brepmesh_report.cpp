@@ -80,7 +80,7 @@ void write_report(const Options& o, const std::vector<Row>& rows, const std::vec
   std::ofstream(dir / "brepmesh.md")
       << "# frontsteal vs Open CASCADE BRepMesh_IncrementalMesh on real CAD faces (measured)\n\n"
       << stamp.str() << "\n\n"
-      << "Reproduce: `./build/release/tessellate/benchmarks/brepmesh_comparison --out tessellate/results`.\n\n"
+      << "Reproduce: `./build/release/tessellate/benchmarks/brepmesh_comparison --out results/tessellate`.\n\n"
       << "Deviation: distance from the triangle to the exact surface at the same (u, v), sampled at 12 barycentric "
          "points per triangle (the lattice of step 1/4 without the corners); max and mean over all samples, in model "
          "units. Both sides are measured on the faces frontsteal imported (\"compared\": faces that gave at least one surface; "
