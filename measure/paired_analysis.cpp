@@ -3,8 +3,12 @@
 #include "measure/paired_analysis.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
+#include <utility>
+#include <vector>
 
 #include "measure/student_t.hpp"
 
@@ -22,6 +26,9 @@ const char* to_string(Decision d) noexcept {
 }
 
 namespace {
+
+// Huber's tuning constant: 95 % efficiency when the errors are normal.
+constexpr double kHuberK = 1.345;
 
 struct Centred {
   std::vector<double> d, c;  // block-centred log-ratio and covariate
@@ -67,20 +74,6 @@ Centred centre(const std::vector<RoundPair>& pairs) {
   return out;
 }
 
-LogInterval t_interval(double estimate, double residual_ss, double df, double se_factor, double confidence) {
-  LogInterval li;
-  li.estimate = estimate;
-  li.df = df;
-  if (df < 1) return li;
-  li.sd = std::sqrt(residual_ss / df);
-  li.se = li.sd * se_factor;
-  const double t = student_t_quantile(0.5 + confidence / 2.0, df);
-  li.low = estimate - t * li.se;
-  li.high = estimate + t * li.se;
-  li.valid = true;
-  return li;
-}
-
 Decision decide(const LogInterval& li, double margin) {
   if (!li.valid) return Decision::kTooFewRounds;
   const double l = std::log1p(margin);
@@ -90,34 +83,91 @@ Decision decide(const LogInterval& li, double margin) {
   return Decision::kInconclusive;
 }
 
+// The clusters of the rounds: rounds that share an instance of the candidate or of the reference are joined
+// (union-find); a round that names neither is a cluster of its own. `absorbed` is what the block effects take
+// from the cluster sums: with rounds independent and of equal variance, the residuals' cluster sums have
+// E[sum_g S_g^2] = sigma^2 (N - absorbed), absorbed = sum over clusters g and blocks b of n_gb^2 / n_b (B
+// when every round is its own cluster; N / passes when each cluster holds a stretch of one pass).
+struct Clusters {
+  std::vector<std::size_t> of;  // [round]: its cluster, 0 .. count-1
+  std::size_t count = 0;
+  double absorbed = 0;
+  bool trivial = true;          // every round its own cluster
+};
+
+Clusters cluster_rounds(const std::vector<RoundPair>& kept, const std::vector<std::size_t>& block) {
+  const std::size_t n = kept.size();
+  std::vector<std::size_t> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::map<int, std::size_t> first_candidate, first_reference;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (auto [id, first] : {std::pair{kept[i].candidate_instance, &first_candidate},
+                             std::pair{kept[i].reference_instance, &first_reference}}) {
+      if (id < 0) continue;
+      const auto [it, fresh] = first->emplace(id, i);
+      if (!fresh) parent[find(i)] = find(it->second);
+    }
+  }
+  Clusters c;
+  c.of.resize(n);
+  std::map<std::size_t, std::size_t> index;
+  for (std::size_t i = 0; i < n; ++i) c.of[i] = index.emplace(find(i), index.size()).first->second;
+  c.count = index.size();
+  c.trivial = c.count == n;
+  std::map<std::pair<std::size_t, std::size_t>, double> in_cluster_block;
+  std::map<std::size_t, double> in_block;
+  for (std::size_t i = 0; i < n; ++i) {
+    in_cluster_block[{c.of[i], block[i]}] += 1;
+    in_block[block[i]] += 1;
+  }
+  for (const auto& [key, count] : in_cluster_block) c.absorbed += count * count / in_block[key.second];
+  return c;
+}
+
 // Huber's M-estimate of d = alpha_block + theta c + e (theta = 0 without the covariate), by iteratively
 // reweighted least squares: weights min(1, k s / |e|) with k = 1.345 (95 % efficiency when e is normal) and s the
-// residuals' normalized median absolute deviation. The estimate is the rounds-weighted mean of the block
-// intercepts at c = 0; its standard error is Huber's sandwich, K s sqrt(sum psi^2 / df) / mean psi', times
-// sqrt(1/N + mean(c)^2 / Sxx) with the covariate. Why: the rounds' log-ratios on these machines have heavy tails
-// (most within ~2 %, a few off by 20-30 % when the machine changed speed inside one arm's run), where the mean's
-// interval is twice as wide as it need be.
-LogInterval huber_fit(const std::vector<RoundPair>& pairs, bool with_covariate, double confidence, double* slope) {
-  constexpr double kHuberK = 1.345;
+// residuals' normalized median absolute deviation; k = infinity is least squares (Estimator::kMean). The
+// estimate is the rounds-weighted mean of the block intercepts at c = 0; its standard error is Huber's
+// sandwich, K s sqrt(sum psi^2 / df) / mean psi', times sqrt(1/N + mean(c)^2 / Sxx) with the covariate — or,
+// when rounds share instances, the cluster-robust form of the same sandwich: each round's influence
+// a_r psi_r with a_r = 1/N - mean(c) (c_r - cbar_block) / Sxx, summed per cluster, squared and summed, times
+// N / (N - absorbed), with df = G (1 - absorbed / N) (- 1 with the covariate): both reduce to the round-level
+// N / (N - B) and N - B when every round is its own cluster, and to G / (G - E) and G - E when each of G
+// clusters holds one stretch of one of G / E passes (paired_analysis.hpp). Why
+// Huber: the rounds' log-ratios on these machines have heavy tails (most within ~2 %, a few off by 20-30 % when
+// the machine changed speed inside one arm's run), where the mean's interval is twice as wide as it need be.
+LogInterval huber_fit(const std::vector<RoundPair>& pairs, bool with_covariate, double confidence, double* slope,
+                      double huber_k, std::size_t* clusters_out) {
   std::vector<double> d, c;
   std::vector<std::size_t> b;
+  std::vector<RoundPair> kept;
   std::map<int, std::size_t> block_index;
   for (const RoundPair& p : pairs) {
     if (!(p.candidate > 0) || !(p.reference > 0)) continue;
+    kept.push_back(p);
     d.push_back(std::log(p.candidate) - std::log(p.reference));
     const bool probed = p.candidate_probe > 0 && p.reference_probe > 0;
     c.push_back(probed ? std::log(p.candidate_probe) - std::log(p.reference_probe) : 0.0);
     b.push_back(block_index.emplace(p.block, block_index.size()).first->second);
   }
   const std::size_t n = d.size(), blocks = block_index.size();
-  const double df = static_cast<double>(n) - static_cast<double>(blocks) - (with_covariate ? 1.0 : 0.0);
+  const Clusters cl = cluster_rounds(kept, b);
+  if (clusters_out) *clusters_out = cl.count;
+  const double covariate_df = with_covariate ? 1.0 : 0.0;
+  const double g = static_cast<double>(cl.count), rounds = static_cast<double>(n);
+  const double df = cl.trivial ? rounds - static_cast<double>(blocks) - covariate_df
+                               : g * (1.0 - cl.absorbed / rounds) - covariate_df;
   LogInterval li;
   li.df = df;
-  if (df < 1) return li;
+  if (df < 1 || static_cast<double>(n) - static_cast<double>(blocks) - covariate_df < 1) return li;
+  const bool least_squares = !std::isfinite(huber_k);
   std::vector<double> w(n, 1.0), e(n, 0.0), alpha(blocks), dbar(blocks), cbar(blocks);
-  std::vector<std::size_t> count(blocks, 0);
-  for (std::size_t i = 0; i < n; ++i) ++count[b[i]];
   double theta = 0, scale = 0, sxx = 0;
+  const double residual_df = static_cast<double>(n) - static_cast<double>(blocks) - covariate_df;
   for (int iteration = 0; iteration < 50; ++iteration) {
     std::vector<double> sw(blocks, 0), swd(blocks, 0), swc(blocks, 0);
     for (std::size_t i = 0; i < n; ++i) {
@@ -142,17 +192,23 @@ LogInterval huber_fit(const std::vector<RoundPair>& pairs, bool with_covariate, 
       e[i] = d[i] - alpha[b[i]] - theta * c[i];
       abs_e[i] = std::fabs(e[i]);
     }
+    if (least_squares) {  // one pass: every weight is 1; the scale only normalizes psi below
+      double ss = 0;
+      for (double x : e) ss += x * x;
+      scale = std::sqrt(ss / residual_df);
+      break;
+    }
     std::nth_element(abs_e.begin(), abs_e.begin() + static_cast<std::ptrdiff_t>(n / 2), abs_e.end());
-    const double new_scale = 1.4826 * abs_e[n / 2] * std::sqrt(static_cast<double>(n) / df);
+    const double new_scale = 1.4826 * abs_e[n / 2] * std::sqrt(static_cast<double>(n) / residual_df);
     if (!(new_scale > 0)) {  // more than half the residuals exactly 0: fall back to least squares' scale
       double ss = 0;
       for (double x : e) ss += x * x;
-      scale = std::sqrt(ss / df);
+      scale = std::sqrt(ss / residual_df);
       break;
     }
     const bool settled = std::fabs(new_scale - scale) < 1e-9 * new_scale;
     scale = new_scale;
-    for (std::size_t i = 0; i < n; ++i) w[i] = std::fabs(e[i]) <= kHuberK * scale ? 1.0 : kHuberK * scale / std::fabs(e[i]);
+    for (std::size_t i = 0; i < n; ++i) w[i] = std::fabs(e[i]) <= huber_k * scale ? 1.0 : huber_k * scale / std::fabs(e[i]);
     if (settled) break;
   }
   double estimate = 0, mean_c = 0;
@@ -162,24 +218,39 @@ LogInterval huber_fit(const std::vector<RoundPair>& pairs, bool with_covariate, 
   }
   estimate /= static_cast<double>(n);
   mean_c /= static_cast<double>(n);
+  std::vector<double> psi(n, 0.0);
   double psi2 = 0, dpsi = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double u = scale > 0 ? e[i] / scale : 0.0;
-    const double psi = std::clamp(u, -kHuberK, kHuberK);
-    psi2 += psi * psi;
-    dpsi += std::fabs(u) <= kHuberK ? 1.0 : 0.0;
+    psi[i] = least_squares ? u : std::clamp(u, -huber_k, huber_k);
+    psi2 += psi[i] * psi[i];
+    dpsi += least_squares || std::fabs(u) <= huber_k ? 1.0 : 0.0;
   }
   if (dpsi <= 0) return li;
   li.estimate = estimate;
   // Huber's small-sample factor K = 1 + (p / n) var(psi') / mean(psi')^2, p = n - df fitted parameters (Huber
   // 1981, sec. 7.6; MASS's rlm): without it the interval covered ~94 % instead of 95 % at 30 rounds in 4 blocks.
   const double mean_dpsi = dpsi / static_cast<double>(n);
-  const double params = static_cast<double>(n) - df;
+  const double params = static_cast<double>(n) - residual_df;
   const double correction = 1.0 + params / static_cast<double>(n) * (1.0 - mean_dpsi) / mean_dpsi;
-  li.sd = correction * scale * std::sqrt(psi2 / df) / mean_dpsi;
   double factor = 1.0 / static_cast<double>(n);
-  if (with_covariate && sxx > 0) factor += mean_c * mean_c / sxx;
-  li.se = li.sd * std::sqrt(factor);
+  const bool covariate_used = with_covariate && sxx > 0;
+  if (covariate_used) factor += mean_c * mean_c / sxx;
+  if (cl.trivial) {
+    li.sd = correction * scale * std::sqrt(psi2 / residual_df) / mean_dpsi;
+    li.se = li.sd * std::sqrt(factor);
+  } else {
+    std::vector<double> sum(cl.count, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      double a = 1.0 / static_cast<double>(n);
+      if (covariate_used) a -= mean_c * (c[i] - cbar[b[i]]) / sxx;
+      sum[cl.of[i]] += a * psi[i];
+    }
+    double between = 0;
+    for (double x : sum) between += x * x;
+    li.se = correction * scale / mean_dpsi * std::sqrt(between * rounds / (rounds - cl.absorbed));
+    li.sd = li.se / std::sqrt(factor);
+  }
   const double t = student_t_quantile(0.5 + confidence / 2.0, df);
   li.low = estimate - t * li.se;
   li.high = estimate + t * li.se;
@@ -213,25 +284,13 @@ PairedResult analyze_pairs(const std::vector<RoundPair>& pairs, const Settings& 
   r.blocks = k.blocks;
   if (r.rounds < r.blocks + 2) return r;  // fewer than 2 degrees of freedom: no interval worth printing
 
-  double syy = 0, sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < k.d.size(); ++i) {
-    syy += k.d[i] * k.d[i];
-    sxx += k.c[i] * k.c[i];
-    sxy += k.c[i] * k.d[i];
-  }
-  r.raw = s.estimator == Estimator::kHuber
-              ? huber_fit(pairs, false, s.confidence, nullptr)
-              : t_interval(k.mean_d, syy, n - static_cast<double>(r.blocks), 1.0 / std::sqrt(n), s.confidence);
+  double sxx = 0;
+  for (double x : k.c) sxx += x * x;
+  const double k_huber = s.estimator == Estimator::kHuber ? kHuberK : std::numeric_limits<double>::infinity();
+  r.raw = huber_fit(pairs, false, s.confidence, nullptr, k_huber, &r.clusters);
   // The adjusted interval: the probe must have been measured in every round, must vary, and leave df >= 2.
-  if (k.probes && sxx > 0 && n - static_cast<double>(r.blocks) - 1 >= 2 && s.estimator == Estimator::kHuber) {
-    r.adjusted = huber_fit(pairs, true, s.confidence, &r.probe_slope);
-    if (r.raw.sd > 0) r.variance_removed = 1.0 - (r.adjusted.sd * r.adjusted.sd) / (r.raw.sd * r.raw.sd);
-  } else if (k.probes && sxx > 0 && n - static_cast<double>(r.blocks) - 1 >= 2) {
-    r.probe_slope = sxy / sxx;
-    const double residual = std::max(0.0, syy - r.probe_slope * sxy);
-    const double estimate = k.mean_d - r.probe_slope * k.mean_c;  // the covariate's expected value is 0
-    r.adjusted = t_interval(estimate, residual, n - static_cast<double>(r.blocks) - 1,
-                            std::sqrt(1.0 / n + k.mean_c * k.mean_c / sxx), s.confidence);
+  if (k.probes && sxx > 0 && n - static_cast<double>(r.blocks) - 1 >= 2) {
+    r.adjusted = huber_fit(pairs, true, s.confidence, &r.probe_slope, k_huber, nullptr);
     if (r.raw.sd > 0) r.variance_removed = 1.0 - (r.adjusted.sd * r.adjusted.sd) / (r.raw.sd * r.raw.sd);
   }
   r.uses_adjusted = s.adjust_for_probe && r.adjusted.valid;

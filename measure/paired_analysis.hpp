@@ -28,6 +28,17 @@
 //   inconclusive otherwise — with the rounds a run of this noise would need to decide
 // `differs` says the interval excludes 0 (a difference of either sign found, whatever its size): a planted
 // slowdown smaller than the margin can be found (differs) without being called slower.
+//
+// Instances (clusters). Two instances of the same code can differ by a few per cent for as long as they live
+// (where their memory landed, which threads they own: Mytkowicz et al., ASPLOS 2009; Curtsinger & Berger,
+// ASPLOS 2013), so rounds run by one instance are not independent. When a round names the instances that ran
+// it, rounds sharing an instance of either arm form one cluster, and the standard error is the cluster-robust
+// sandwich (Liang & Zeger 1986; Cameron & Miller, J. Human Resources 2015): the rounds' influences summed per
+// cluster, squared and summed, times N / (N - h), with df = G (1 - h / N) (- 1 with the covariate), where G
+// counts the clusters and h = sum over clusters g and blocks b of n_gb^2 / n_b is what the block effects take
+// from the cluster sums. In the main job's design (G clusters, each a stretch of one of G / E passes) that is
+// G / (G - E) with df = G - E; with no instances named every round is its own cluster and this is exactly the
+// round-level interval above (h = B).
 #pragma once
 
 #include <cmath>
@@ -39,25 +50,28 @@
 namespace frontsteal::measure {
 
 // One round of a comparison: both arms' times by the harness's clock (any unit, the same for both), the
-// round's block, and the CPU speed probe taken just before each arm (0: not measured).
+// round's block, the CPU speed probe taken just before each arm (0: not measured), and which instance of each
+// arm ran it (-1: none, or a fresh one every round).
 struct RoundPair {
   double candidate = 0, reference = 0;
   int block = 0;
   double candidate_probe = 0, reference_probe = 0;
+  int candidate_instance = -1, reference_instance = -1;
 };
 
 // One arm's record over the rounds it ran in: per round, the round's id (increasing), its time, the probe
-// before it and the round's block. An arm need not run in every round of a run (the main job's rounds each
-// hold the arms of one P), so pairs are matched by round id.
+// before it, the round's block and the instance of the arm that ran it (-1: none). An arm need not run in every
+// round of a run (the main job's rounds each hold the arms of one P), so pairs are matched by round id.
 struct ArmRounds {
   std::vector<std::size_t> round;
   std::vector<double> time, probe;
-  std::vector<int> block;
-  void add(std::size_t id, double t, double p, int b) {
+  std::vector<int> block, instance;
+  void add(std::size_t id, double t, double p, int b, int inst = -1) {
     round.push_back(id);
     time.push_back(t);
     probe.push_back(p);
     block.push_back(b);
+    instance.push_back(inst);
   }
   std::size_t size() const { return time.size(); }
 };
@@ -70,7 +84,8 @@ inline std::vector<RoundPair> pair_rounds(const ArmRounds& candidate, const ArmR
     while (j < reference.size() && reference.round[j] < candidate.round[i]) ++j;
     if (j == reference.size()) break;
     if (reference.round[j] != candidate.round[i]) continue;
-    out.push_back({candidate.time[i], reference.time[j], candidate.block[i], candidate.probe[i], reference.probe[j]});
+    out.push_back({candidate.time[i], reference.time[j], candidate.block[i], candidate.probe[i], reference.probe[j],
+                   candidate.instance[i], reference.instance[j]});
   }
   return out;
 }
@@ -94,7 +109,8 @@ struct Settings {
 // An interval on the log-ratio scale, with its per-round spread.
 struct LogInterval {
   double estimate = 0, low = 0, high = 0;
-  double sd = 0;  // residual spread of one round's log-ratio (within blocks; after the covariate, if adjusted)
+  double sd = 0;  // spread of one round's log-ratio (within blocks; after the covariate, if adjusted); with
+                  // clusters, the spread that gives the cluster-robust standard error at this many rounds
   double se = 0;  // standard error of the estimate
   double df = 0;
   bool valid = false;
@@ -107,6 +123,7 @@ struct LogInterval {
 
 struct PairedResult {
   std::size_t rounds = 0, blocks = 0;
+  std::size_t clusters = 0;  // groups of rounds that shared an instance (= rounds when none is named)
   LogInterval raw, adjusted;  // adjusted.valid: the probe was measured for every round and df allows it
   double probe_slope = 0;        // theta
   double variance_removed = 0;   // 1 - adjusted.sd^2 / raw.sd^2 (negative: the covariate cost degrees of freedom)

@@ -54,16 +54,28 @@ SyntheticRun simulate_rounds(const SpeedModel& model, const std::vector<double>&
   if (blocks == 0) blocks = 1;
   // The machine draws from a stream of its own: the orders come from round_order(seed, round).
   Machine machine(model, seed ^ 0x6a09'e667'f3bc'c909ull);
+  // The instances' offsets from a stream of their own, so that adding them leaves the rest of a series as it was.
+  stats::SplitMix64 instance_rng(seed ^ 0xbb67'ae85'84ca'a73bull);
+  std::vector<double> offset(arms, 0.0);
   for (std::size_t k = 0; k < rounds; ++k) {
     const int block = static_cast<int>(k % blocks);
     run.block.push_back(block);
+    if (model.instance_sd > 0) {
+      const std::size_t per = model.rounds_per_instance ? model.rounds_per_instance : rounds;
+      if (k % per == 0) {
+        for (double& o : offset) o = model.instance_sd * normal(instance_rng);
+      }
+      run.instance.push_back(static_cast<int>(k / per));
+    } else {
+      run.instance.push_back(-1);
+    }
     const double scale = block_scale.empty() ? 1.0 : block_scale[static_cast<std::size_t>(block) % block_scale.size()];
     for (std::size_t a : round_order(arms, seed, k, kind)) {
       const double s = machine.slowness();
       run.probe[a][k] = std::exp(model.probe_tracking * s + machine.noise(model.probe_noise_sd));
       double e = machine.noise(model.run_noise_sd);
       if (model.outlier_rate > 0 && machine.uniform() < model.outlier_rate) e += machine.noise(model.outlier_sd);
-      const double t = arm_cost_s[a] * scale * std::exp(s + e);
+      const double t = arm_cost_s[a] * scale * std::exp(s + e + offset[a]);
       run.time[a][k] = t;
       machine.advance(t);
     }
@@ -75,7 +87,7 @@ std::vector<RoundPair> pairs_of(const SyntheticRun& run, std::size_t candidate, 
   std::vector<RoundPair> out;
   for (std::size_t k = 0; k < run.block.size(); ++k) {
     out.push_back({run.time[candidate][k], run.time[reference][k], run.block[k], run.probe[candidate][k],
-                   run.probe[reference][k]});
+                   run.probe[reference][k], run.instance[k], run.instance[k]});
   }
   return out;
 }

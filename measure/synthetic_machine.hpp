@@ -9,6 +9,10 @@
 // the heavy tails the real machines show); the probe taken just before it reads exp(k s(t) + u), with k how
 // much of the machine's change the probe sees. Arms run one after another, so a round's order decides when
 // each one runs — which is what makes a fixed order biased under drift.
+//
+// Instances: each arm runs as one instance for `rounds_per_instance` consecutive rounds, then a fresh one (0: one
+// instance for the whole run); each instance carries a fixed log-offset ~ N(0, instance_sd^2) — the
+// few-per-cent difference two copies of the same code show for as long as they live (paired_analysis.hpp).
 #pragma once
 
 #include <cstddef>
@@ -29,11 +33,14 @@ struct SpeedModel {
   double outlier_rate = 0, outlier_sd = 0;  // a run hit by a change of speed inside it: extra noise, this often
   double probe_noise_sd = 0.005;           // the probe's own noise
   double probe_tracking = 1.0;             // k: the share of s the probe sees
+  double instance_sd = 0;                  // each instance's fixed offset
+  std::size_t rounds_per_instance = 0;     // an arm's fresh instance every this many rounds (0: one per run)
 };
 
 struct SyntheticRun {
   std::vector<std::vector<double>> time, probe;  // [arm][round], seconds and the probe's reading
   std::vector<int> block;                         // [round]
+  std::vector<int> instance;                      // [round]: every arm's instance id (-1: instances not modelled)
 };
 
 // `rounds` rounds of the arms (costs in seconds; round k covers block k % blocks, whose cost is scaled by

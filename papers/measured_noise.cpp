@@ -14,7 +14,8 @@ std::string fixed(double v, int digits) { return report::fixed_text(v, digits); 
 std::string comparison_method(int rounds, const measure::Settings& settings) {
   const std::string m = fixed(100 * settings.margin, 0);
   return "the " + std::string(measure::to_string(settings.estimator)) + " of the " + std::to_string(rounds) +
-         " per-round path-time log-ratios (rounds in a fresh random order) with its " +
+         " per-round path-time log-ratios (rounds in a fresh random order, every scheduler a fresh instance at a "
+         "random heap offset in every round) with its " +
          fixed(100 * settings.confidence, 0) + " % Student-t interval" +
          (settings.adjust_for_probe ? ", adjusted for the CPU speed probe when that can be computed" : "") +
          "; verdict against a ±" + m + " % margin: faster or slower when the whole interval lies beyond it, "

@@ -11,6 +11,7 @@
 
 #include "core/execution_counter.hpp"
 #include "measure/cpu_speed_probe.hpp"
+#include "measure/heap_offset.hpp"
 #include "schedulers/registry.hpp"
 
 namespace frontsteal::papers {
@@ -101,21 +102,33 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
 
   struct Cell {
     MeasuredRun run;
+    const sched::SchedulerInfo* info = nullptr;
+    measure::HeapOffset heap_offset;  // declared before the instance: outlives it
     std::unique_ptr<sched::Scheduler> instance;
     double busy = 0, cpu = 0, available = 0, imbalance_sum = 0;
     std::uint64_t frames = 0;
   };
+  // Every round runs fresh instances, each at a random heap offset (measure/heap_offset.hpp) and warmed up on
+  // frame 0 untimed: two instances of the same code differ by a few per cent for as long as they live, so with
+  // one instance per run that difference would be a constant no interval over rounds includes; renewed every
+  // round (a round is a whole path here), it is part of each round's noise and the rounds stay independent.
+  std::uint64_t draws = 0;
+  auto renew = [&](Cell& c) {
+    c.instance.reset();
+    c.heap_offset = measure::HeapOffset();
+    c.heap_offset = measure::HeapOffset(o.seed, draws++);
+    c.instance = c.info->make({.workers = c.run.workers, .items = n, .seed = o.seed}, wl.hints());
+    auto warm = [&](ItemId id, WorkerId w) { wl.tessellate(0, id, w); };
+    c.instance->run_frame(warm);
+  };
   std::vector<Cell> cells;
   for (WorkerId p : o.threads) {
     for (const auto& name : o.schedulers) {
-      const sched::SchedulerInfo* info = sched::find_scheduler(name);
-      if (!info) throw std::invalid_argument("unknown scheduler '" + name + "'");
       Cell c;
+      c.info = sched::find_scheduler(name);
+      if (!c.info) throw std::invalid_argument("unknown scheduler '" + name + "'");
       c.run.scheduler = name;
       c.run.workers = p;
-      c.instance = info->make({.workers = p, .items = n, .seed = o.seed}, wl.hints());
-      auto warm = [&](ItemId id, WorkerId w) { wl.tessellate(0, id, w); };
-      c.instance->run_frame(warm);
       cells.push_back(std::move(c));
     }
   }
@@ -172,6 +185,7 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
     }
   };
   for (int r = 0; r < o.repeats; ++r) {
+    for (Cell& c : cells) renew(c);
     // Arm 0 is the serial loop, arm k the k-th cell; before each, a pause for library runtimes to settle, then
     // the probe (the covariate of measure/paired_analysis.hpp), before the arm so that it cannot depend on it.
     for (std::size_t arm : measure::round_order(cells.size() + 1, o.seed, static_cast<std::size_t>(r), o.order)) {

@@ -146,6 +146,14 @@ std::string acceptance(const std::map<std::string, measure::CalibrationTally>& t
 
 }  // namespace
 
+void ignore_instances(std::vector<std::vector<CalibrationSeries>>& files) {
+  for (auto& file : files) {
+    for (CalibrationSeries& c : file) {
+      for (measure::RoundPair& p : c.pairs) p.candidate_instance = p.reference_instance = -1;
+    }
+  }
+}
+
 std::string calibration_markdown(const CalibrationSummary& s, const std::string& machine) {
   std::ostringstream md;
   md << "# Calibration of the main job's verdicts (measured)\n\n"
@@ -155,7 +163,11 @@ std::string calibration_markdown(const CalibrationSummary& s, const std::string&
         "faster or slower for the A/A twin, the opposite direction for a planted change; found = the interval lies "
         "beyond 0 on the planted side; planted verdict = slower (faster for the speed-up) beyond the margin "
         "(equivalent for the twin); planted size inside = the realized planted change (measured by the harness's "
-        "clock) lies in the interval.\n\n";
+        "clock) lies in the interval. "
+     << (s.instances_ignored ? "**Control: the rounds analysed as independent** (--ignore-instances): the instances "
+                               "the runs named are ignored, so the interval leaves out how much instances differ.\n\n"
+                             : "Rounds that shared a scheduler instance are analysed as a cluster (cluster-robust "
+                               "interval) where the runs named their instances.\n\n");
   if (s.real_files > 0) {
     std::size_t lo = s.real_rounds.empty() ? 0 : *std::min_element(s.real_rounds.begin(), s.real_rounds.end());
     std::size_t hi = s.real_rounds.empty() ? 0 : *std::max_element(s.real_rounds.begin(), s.real_rounds.end());
@@ -187,6 +199,7 @@ report::Json calibration_summary_json(const CalibrationSummary& s) {
     return out;
   };
   return {{"margin_pct", 100 * s.settings.margin}, {"adjusted", s.settings.adjust_for_probe},
+          {"instances_ignored", s.instances_ignored},
           {"real_files", s.real_files}, {"real_rounds", s.real_rounds}, {"real", tallies(s.real)},
           {"long_runs", s.long_runs}, {"resampled_experiments_each", s.resampled_each},
           {"resampled_rounds", s.resampled_rounds}, {"resampled", tallies(s.resampled)}};

@@ -44,7 +44,11 @@ struct CalibrationSummary {
   std::size_t real_files = 0, long_runs = 0, resampled_each = 0, resampled_rounds = 0;
   std::vector<std::size_t> real_rounds;  // rounds of each real experiment
   measure::Settings settings;
+  bool instances_ignored = false;  // every round analysed as independent (--ignore-instances, a control)
 };
+
+// Every round as if no instance had been named: the round-level interval, for comparison with the clustered one.
+void ignore_instances(std::vector<std::vector<CalibrationSeries>>& files);
 
 // `real`: one experiment per file. `long_runs`: `experiments` experiments of `rounds` rounds each from each.
 CalibrationSummary summarize_calibration(const std::vector<std::vector<CalibrationSeries>>& real,

@@ -35,6 +35,10 @@ int main(int argc, char** argv) {
   cli.option("--rounds", rounds, "rounds per resampled experiment (default: the median of the real runs')")->type_name("R");
   cli.option("--margin", margin_pct, "equivalence margin (%)")->type_name("PCT");
   cli.flag("--no-adjust", no_adjust, "analyse with the raw interval instead of the probe-adjusted one");
+  bool no_instances = false;
+  cli.flag("--ignore-instances", no_instances,
+           "a control: analyse every round as independent, ignoring the scheduler instances the runs name (the "
+           "round-level interval, which leaves out how much two instances of the same code differ)");
   cli.seed(seed);
   cli.out(out)->type_name("DIR");
   cli.parse(argc, argv);
@@ -56,8 +60,12 @@ int main(int argc, char** argv) {
   }
   const frontsteal::measure::Settings settings{.margin = margin_pct / 100, .confidence = 0.95,
                                                .adjust_for_probe = !no_adjust};
-  const mj::CalibrationSummary summary =
-      mj::summarize_calibration(real_series, long_series, experiments, rounds, settings, seed);
+  if (no_instances) {
+    mj::ignore_instances(real_series);
+    mj::ignore_instances(long_series);
+  }
+  mj::CalibrationSummary summary = mj::summarize_calibration(real_series, long_series, experiments, rounds, settings, seed);
+  summary.instances_ignored = no_instances;
   const std::string md = mj::calibration_markdown(summary, frontsteal::cpu_model());
   std::cout << md;
   try {

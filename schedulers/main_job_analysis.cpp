@@ -47,13 +47,19 @@ report::Json interval_json(const measure::LogInterval& li) {
 
 double finite_or(double v, double otherwise) { return std::isfinite(v) ? v : otherwise; }
 
+std::string instances_text(const Options& o) {
+  if (o.instance_frames <= 0) return "one instance of each scheduler for the whole run";
+  return "a fresh instance of each scheduler every " + std::to_string(o.instance_frames) +
+         " frames, its rounds one cluster of the cluster-robust error";
+}
+
 }  // namespace
 
 report::Json ShownComparison::json() const {
   const measure::LogInterval& li = c.chosen();
   auto number = [&](double v) { return li.valid ? report::Json(v) : report::Json(nullptr); };  // no interval: null
   return {{"ratio", number(li.ratio())}, {"ci95_low", number(li.ratio_low())}, {"ci95_high", number(li.ratio_high())},
-          {"pairs", c.rounds}, {"rounds", c.rounds}, {"blocks", c.blocks},
+          {"pairs", c.rounds}, {"rounds", c.rounds}, {"blocks", c.blocks}, {"clusters", c.clusters},
           {"effect_pct", number(li.effect_pct())}, {"verdict", reliable ? measure::to_string(c.decision) : "unreliable"},
           {"verdict_if_reliable", measure::to_string(c.decision)}, {"reliable", reliable},
           {"unreliable_reason", noise_reason}, {"margin_pct", 100 * c.margin}, {"differs", c.differs},
@@ -277,8 +283,8 @@ void short_answer(const Measured& m, Analysis& a) {
   a.design_line = std::to_string(per_comparison) + " rounds per comparison (" + std::to_string(o.repeats) +
                   " passes x segments of " + std::to_string(o.round_frames) + " frames; " + std::to_string(rounds) +
                   " rounds in all, each the serial loop and every arm of one P once, in " + measure::to_string(o.order) +
-                  " order); verdicts on the per-round log-ratio (" + measure::to_string(o.estimator) +
-                  ", segments as blocks), Student-t 95 % interval" +
+                  " order; " + instances_text(o) + "); verdicts on the per-round log-ratio (" +
+                  measure::to_string(o.estimator) + ", segments as blocks), Student-t 95 % interval" +
                   (o.adjust ? " adjusted for the CPU speed probe (regression on the probe before each arm; it removed a "
                               "median " + fixed(a.median_variance_removed_pct, 0) + " % of the variance, raw intervals in "
                               "the JSON)"

@@ -6,6 +6,7 @@
 // once, they cannot drift apart.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -13,6 +14,7 @@
 
 #include "core/execution_counter.hpp"
 #include "core/frame_stats.hpp"
+#include "measure/heap_offset.hpp"
 #include "measure/noise_monitor.hpp"
 #include "measure/paired_analysis.hpp"
 #include "schedulers/llvm_openmp_child.hpp"
@@ -35,7 +37,9 @@ struct Cell {
   double planted = 0;                        // planted extra work, as a fraction of the base's frame time
   std::vector<std::uint64_t> planted_steps;  // per frame: CPU-probe steps spun after the frame, inside the timing
   WorkerId workers = 0;
+  measure::HeapOffset heap_offset;                 // held while `instance` lives: a random shift of its memory
   std::unique_ptr<sc::Scheduler> instance;
+  int instance_id = 0;                             // counts the instances built (recorded with every round)
   std::unique_ptr<sc::LlvmOpenMpChild> child;      // openmp-static-steal: the child process instead of instance
   std::string unavailable;                         // why this cell could not run ("" when it ran)
   double setup_ms = 0;                             // construction (annealing included)

@@ -49,9 +49,11 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
   js["repeats_note"] = m.repeats_note;
   js["answer"] = a.answer;
   js["design"] = {{"line", a.design_line}, {"rounds", m.serial_rounds.size()}, {"passes", o.repeats},
-                  {"round_frames", o.round_frames}, {"order", measure::to_string(o.order)}, {"seed", o.seed},
+                  {"round_frames", o.round_frames}, {"instance_frames", o.instance_frames},
+                  {"order", measure::to_string(o.order)}, {"seed", o.seed},
                   {"margin_pct", 100 * o.margin}, {"interval", std::string("Student t on the per-round log-ratios (") + measure::to_string(o.estimator) +
-                                  "), segments as blocks"},
+                                  "), segments as blocks" +
+                                  (o.instance_frames > 0 ? ", cluster-robust over the schedulers' instances" : "")},
                   {"covariate", o.adjust ? "CPU speed probe before each arm (regression adjustment)" : "none (--no-adjust)"},
                   {"clock", "harness steady_clock around run_frame (openmp-static-steal: the child's clock)"},
                   {"median_mde80_pct", a.median_mde_pct}};

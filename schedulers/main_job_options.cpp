@@ -40,7 +40,9 @@ scheduler's own figure is kept as a cross-check). Each comparison (a scheduler a
 against queue-mutex at the same P) is analysed on the per-round log-ratio of the two arms' times: a robust
 location (Huber's M-estimate; --estimator) with segment effects removed and a Student-t 95 % interval, raw and
 adjusted for the CPU speed probe timed just before each arm (regression adjustment); the ratio shown is its
-exponential.
+exponential. Every scheduler is built afresh every --instance-frames frames (at a random heap offset), and
+the rounds one instance ran form a cluster: the interval's error is cluster-robust, so it includes how much
+two instances of the same code differ, not only how much rounds do.
 Verdicts against the margin m (--margin, default 2 %): faster / slower when the whole interval lies beyond +-m,
 equivalent when it lies inside +-m, inconclusive otherwise, with the rounds a run of this noise would need.
 "unreliable" only when something invalidated the measurement: another process took the machine while the pair
@@ -167,6 +169,13 @@ Options parse_options(int argc, char** argv) {
              "frames per round: the path is split into segments of F frames, each a round in which every arm runs "
              "once (short rounds keep the members of a pair close in time)")
       ->type_name("F")->check(CLI::Range(1, 100000));
+  cli.option("--instance-frames", o.instance_frames,
+             "a fresh instance of every scheduler every F frames of each pass, at a random heap offset, after an "
+             "untimed warm-up on the frame before (what it learns from frame to frame carries over); rounds of one "
+             "instance are analysed as a cluster. Two instances of the same code differ by a few per cent for as "
+             "long as they live; 0 keeps one instance per run and analyses its rounds as independent (a control: that "
+             "interval misses the instances' offsets)")
+      ->type_name("F")->check(CLI::Range(0, 100000));
   std::string order = "random";
   cli.option("--order", order,
              "order of the arms within a round: random (a fresh random order per round, from --seed), "

@@ -37,6 +37,7 @@ struct Options {
   int repeats = 0;  // passes over the path; 0: auto (see --repeats)
   double budget_s = 180;
   int round_frames = 1;  // frames per round: the path is split into segments of this many frames
+  int instance_frames = 6;  // a fresh instance of every scheduler every this many frames (0: one per run)
   measure::OrderKind order = measure::OrderKind::kRandom;
   double margin = 0.02;       // the verdicts' equivalence margin (fraction of time)
   bool adjust = true;         // verdicts from the CPU-probe-adjusted interval

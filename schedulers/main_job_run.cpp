@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -14,6 +16,7 @@
 #include <utility>
 
 #include "measure/cpu_speed_probe.hpp"
+#include "measure/heap_offset.hpp"
 #include "measure/round_order.hpp"
 #include "reporting/table.hpp"
 #include "schedulers/round_robin_spread.hpp"
@@ -153,18 +156,30 @@ bool Measurement::start_child(Cell& c) {
   return c.unavailable.empty();
 }
 
+// A scheduler instance for the cell, built after a heap offset drawn afresh (measure/heap_offset.hpp): an
+// instance's placement becomes noise the clusters measure instead of a constant of the run.
+std::unique_ptr<sc::Scheduler> Measurement::make_instance(Cell& c, std::uint64_t draw) {
+  c.instance.reset();
+  c.heap_offset = measure::HeapOffset();
+  c.heap_offset = measure::HeapOffset(o_.seed, draw);
+  const sc::SchedulerInfo* info = sc::find_scheduler(c.scheduler);
+  sc::SchedulerConfig config{.workers = c.workers, .items = static_cast<ItemId>(wl_.model.surfaces.size()),
+                             .grain = o_.grain, .seed = o_.seed};
+  return info->make(config, hints_);
+}
+
 bool Measurement::start_cells(const sc::WorkloadHints& hints) {
-  const auto n = static_cast<ItemId>(wl_.model.surfaces.size());
+  hints_ = hints;
+  std::uint64_t draw = 0;
   for (Cell& c : cells_) {
+    ++draw;
     if (c.scheduler == sc::kLlvmOpenMpName) {
       start_child(c);
       continue;
     }
-    const sc::SchedulerInfo* info = sc::find_scheduler(c.scheduler);
-    sc::SchedulerConfig config{.workers = c.workers, .items = n, .grain = o_.grain, .seed = o_.seed};
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      c.instance = info->make(config, hints);
+      c.instance = make_instance(c, draw);
     } catch (const std::exception& e) {
       std::cerr << kProgram << ": cannot start " << c.label << " with P=" << c.workers << ": " << e.what() << '\n';
       return false;
@@ -182,6 +197,40 @@ bool Measurement::start_cells(const sc::WorkloadHints& hints) {
   }
   std::erase_if(cells_, [](const Cell& c) { return !c.unavailable.empty() || (!c.instance && !c.child); });
   return true;
+}
+
+// The instance a cell's round names: -1 under --instance-frames 0 (one instance for the run, its rounds
+// analysed as independent: the design whose intervals miss the instance effect, kept as a control).
+int Measurement::instance_of(const Cell& c) const { return o_.instance_frames > 0 ? c.instance_id : -1; }
+
+// Fresh instances of every in-process cell, each warmed up (untimed) on the frame before `first_frame`, so
+// that what a scheduler carries from frame to frame (stealing's allocation, oneTBB's affinity) is what it
+// would carry there; at the start of a pass the child of openmp-static-steal is restarted too (it takes half
+// a second, so once a pass). The instance ids go with every round the instances run (the clusters of
+// measure/paired_analysis.hpp).
+void Measurement::renew_instances(int pass, int first_frame) {
+  const int warm_frame = std::max(first_frame - 1, 0);
+  for (Cell& c : cells_) {
+    if (c.child) {
+      if (first_frame != 0) continue;
+      const std::uint64_t ticks = c.child->cpu_ticks();
+      c.child.reset();  // stops and reaps it
+      retired_child_ticks_ += ticks;
+      const double first_setup_ms = c.setup_ms;
+      if (!start_child(c)) throw std::runtime_error(c.label + " P=" + std::to_string(c.workers) + ": " + c.unavailable);
+      c.setup_ms = first_setup_ms;
+      c.instance_id = pass;
+      continue;
+    }
+    c.instance = make_instance(c, instances_built_++);
+    ++c.instance_id;
+    auto warm = [&](ItemId id, WorkerId w) {
+      pin_as(w);
+      tess_.run(warm_frame, id, w);
+    };
+    c.instance->run_frame(warm);
+    unpin_caller();
+  }
 }
 
 bool Measurement::start_interference() {
@@ -286,7 +335,7 @@ void Measurement::run_cell_segment(Cell& c, std::size_t round, int segment, doub
   c.usage += nz::usage_between(before, sample());
   unpin_caller();
   c.path_ms.back() += total;
-  c.rounds.add(round, total, probe, segment);
+  c.rounds.add(round, total, probe, segment, instance_of(c));
   c.round_planted_ms.push_back(planted_total);
 }
 
@@ -310,7 +359,7 @@ void Measurement::run_child_segment(Cell& c, std::size_t round, int segment, dou
     total += ms;
   }
   c.path_ms.back() += total;
-  c.rounds.add(round, total, probe, segment);
+  c.rounds.add(round, total, probe, segment, instance_of(c));
   c.round_planted_ms.push_back(0);
 }
 
@@ -415,6 +464,19 @@ bool Measurement::run_rounds(Progress& progress, bool auto_repeats, std::string&
     }
     begin_pass();
     for (int s = 0; s < segs; ++s) {
+      // Fresh instances where a new stretch of --instance-frames frames starts (the first pass's first
+      // instances are start_cells' own).
+      const int stretch_first = segment_frames(o_, s).first;
+      const bool new_stretch = o_.instance_frames > 0 &&
+                               (s == 0 || stretch_first / o_.instance_frames != segment_frames(o_, s - 1).first / o_.instance_frames);
+      if (new_stretch && (r > 0 || s > 0)) {
+        try {
+          renew_instances(r, stretch_first);
+        } catch (const std::exception& e) {
+          std::cerr << kProgram << ": " << e.what() << '\n';
+          return false;
+        }
+      }
       // The P of this segment's rounds, in an order of their own (the arms of different P are never compared
       // within a round, so each P's round holds only its arms and the serial loop: shorter rounds, closer pairs).
       const std::size_t segment_id = static_cast<std::size_t>(r) * static_cast<std::size_t>(segs) + static_cast<std::size_t>(s);

@@ -2,7 +2,10 @@
 // under --calibrate the calibration arms) set up with one untimed warm-up frame, then ROUNDS: a round covers one
 // segment of the path (--round-frames frames) at one P and runs the serial loop and every arm at that P once on
 // it, in the order measure/round_order.hpp gives for that round (random by default). A pass is one round per
-// segment and P; --repeats counts passes. Every frame
+// segment and P; --repeats counts passes. Every --instance-frames frames of a pass every arm is built afresh at
+// a random heap offset and warmed up untimed on the frame before (openmp-static-steal's child: once a pass), and
+// each round records which instance ran it: two instances of the same code differ for as long as they live,
+// and the analysis needs the instances as clusters to include that. Every frame
 // is timed by this object's clock around the scheduler's run_frame (and the planted work of a calibration arm),
 // the scheduler's own wall_ns kept as a cross-check; the CPU speed probe is timed on this thread just before each
 // arm runs (the covariate of measure/paired_analysis.hpp). The --interference co-runner runs around them; the
@@ -16,6 +19,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,8 +53,8 @@ class Measurement {
   // `warm` gives the serial frame times the planted work is sized from.
   Measurement(Options& o, Workload& wl, FrameTessellator& tess, const WarmUp& warm);
 
-  // Constructs every cell's scheduler (static partitions computed here, timed) and runs one untimed warm-up
-  // frame; openmp-static-steal starts its child per P (it warms up itself). Cells that cannot start are moved
+  // Constructs every cell's scheduler (static partitions computed here, timed; the first instance of each
+  // cell; run_rounds builds fresh ones every o.instance_frames frames) and runs one untimed warm-up frame; openmp-static-steal starts its child per P (it warms up itself). Cells that cannot start are moved
   // to not_available() and reported, not measured. False (after a message) when an in-process scheduler
   // cannot start.
   bool start_cells(const sc::WorkloadHints& hints);
@@ -78,7 +83,12 @@ class Measurement {
   int co_runner_cpu() const;  // -1: not pinned (or no co-runner)
 
  private:
-  nz::ProcSample sample() const { return nz::sample_now(co_runner_.pid()); }
+  // The machine now; the CPU time of the children restarted meanwhile (gone from /proc) counted as ours.
+  nz::ProcSample sample() const {
+    nz::ProcSample s = nz::sample_now(co_runner_.pid());
+    s.children_ticks += retired_child_ticks_;
+    return s;
+  }
   void pin_as(WorkerId w) const;
   void unpin_caller() const;
   bool start_child(Cell& c);
@@ -89,6 +99,9 @@ class Measurement {
   void run_cell_segment(Cell& c, std::size_t round, int segment, double probe);
   void run_child_segment(Cell& c, std::size_t round, int segment, double probe);
   void begin_pass();
+  void renew_instances(int pass, int first_frame);
+  int instance_of(const Cell& c) const;
+  std::unique_ptr<sc::Scheduler> make_instance(Cell& c, std::uint64_t draw);
   int passes_from_pilot(double pass_s, std::string& note) const;
 
   Options& o_;
@@ -107,6 +120,9 @@ class Measurement {
   double pass_probe_min_ = 0;                     // the smallest probe before the serial loop's segments this pass
   std::vector<WorkerId> ps_;                      // the P of the rounds: every P some cell runs at
   std::size_t rounds_done_ = 0;
+  sc::WorkloadHints hints_;                       // kept for the instances built after the first
+  std::uint64_t instances_built_ = 1'000'000;     // draws of the heap offsets after start_cells' own
+  std::uint64_t retired_child_ticks_ = 0;         // CPU ticks of the children replaced by fresh ones
   nz::ProcSample measure_start_, measure_end_, at_end_;
 };
 

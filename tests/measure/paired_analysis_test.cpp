@@ -398,6 +398,89 @@ TEST_CASE("too few rounds give no interval and no verdict", "[paired_analysis]")
   }
 }
 
+// Rounds that name the instances that ran them: `per` consecutive rounds share one instance of each arm.
+std::vector<ms::RoundPair> with_instances(std::vector<ms::RoundPair> pairs, std::size_t candidate_per,
+                                          std::size_t reference_per) {
+  for (std::size_t r = 0; r < pairs.size(); ++r) {
+    pairs[r].candidate_instance = static_cast<int>(r / candidate_per);
+    pairs[r].reference_instance = static_cast<int>(r / reference_per);
+  }
+  return pairs;
+}
+
+TEST_CASE("a fresh instance every round gives exactly the round-level interval", "[paired_analysis][instances]") {
+  std::vector<double> d;
+  std::vector<int> block;
+  for (std::size_t r = 0; r < 40; ++r) {
+    d.push_back(0.01 + jitter(r, 0.02) + (r % 11 == 3 ? 0.2 : 0.0));  // a few outliers: Huber's weights in play
+    block.push_back(static_cast<int>(r % 4));
+  }
+  for (ms::Estimator e : kEstimators) {
+    INFO(ms::to_string(e));
+    const ms::PairedResult plain = ms::analyze_pairs(pairs_with(d, block), settings_with(e));
+    const ms::PairedResult named = ms::analyze_pairs(with_instances(pairs_with(d, block), 1, 1), settings_with(e));
+    CHECK(plain.clusters == 40);
+    CHECK(named.clusters == 40);
+    CHECK(named.raw.estimate == Approx(plain.raw.estimate).margin(1e-15));
+    CHECK(named.raw.se == Approx(plain.raw.se).epsilon(1e-12));
+    CHECK(named.raw.df == plain.raw.df);
+    CHECK(named.decision == plain.decision);
+  }
+}
+
+TEST_CASE("rounds that share an instance: the cluster-robust standard error by hand", "[paired_analysis][instances]") {
+  // One block, four instances of two rounds each, the mean: d = {0.01, 0.03 | -0.02, 0.00 | 0.05, 0.03 | -0.01,
+  // -0.01}, mean 0.01; residuals summed per cluster {0.02, -0.04, 0.06, -0.04}, squares 0.0072; each round's
+  // influence is its residual / N, so se^2 = 0.0072 / 64 * G / (G - 1) with G = 4, df = G - 1 = 3.
+  const std::vector<double> d{0.01, 0.03, -0.02, 0.00, 0.05, 0.03, -0.01, -0.01};
+  const ms::PairedResult r = ms::analyze_pairs(with_instances(pairs_with(d), 2, 2), mean_settings());
+  const double se = std::sqrt(0.0072 / 64.0 * 4.0 / 3.0);
+  CHECK(r.clusters == 4);
+  CHECK(r.raw.estimate == Approx(0.01).margin(1e-12));
+  CHECK(r.raw.df == 3.0);
+  CHECK(r.raw.se == Approx(se).epsilon(1e-9));
+  CHECK(r.raw.high - r.raw.low == Approx(2.0 * 3.1824 * se).epsilon(1e-4));
+  // The same rounds taken as independent: 7 degrees of freedom and a narrower interval. The clusters' sums
+  // disagree more than their rounds do, which only the cluster-robust error sees.
+  const ms::PairedResult flat = ms::analyze_pairs(pairs_with(d), mean_settings());
+  CHECK(flat.raw.df == 7.0);
+  CHECK(flat.raw.se < r.raw.se);
+}
+
+TEST_CASE("instances of the two arms join rounds into clusters, and the blocks take their share of the cluster sums",
+          "[paired_analysis][instances]") {
+  std::vector<double> d;
+  std::vector<int> block;
+  for (std::size_t r = 0; r < 48; ++r) {
+    d.push_back(jitter(r, 0.02));
+    block.push_back(static_cast<int>(r % 12));  // 4 passes of 12 segments
+  }
+  // The candidate renewed every 12 rounds (per pass), the reference every 4: a cluster is a pass.
+  const ms::PairedResult per_pass = ms::analyze_pairs(with_instances(pairs_with(d, block), 12, 4), mean_settings());
+  CHECK(per_pass.clusters == 4);
+  CHECK(per_pass.raw.df == 3.0);  // 4 clusters, all covering the same 12 blocks: one set
+  // Both renewed every 4 rounds: 12 clusters covering 3 different sets of blocks, df = 12 - 3.
+  const ms::PairedResult per_third = ms::analyze_pairs(with_instances(pairs_with(d, block), 4, 4), mean_settings());
+  CHECK(per_third.clusters == 12);
+  CHECK(per_third.raw.df == 9.0);
+  // A random half of those rounds (as a resampled experiment draws them): clusters hold partial stretches, the
+  // blocks take less from their sums, and the interval keeps most of its degrees of freedom.
+  std::vector<ms::RoundPair> half;
+  const std::vector<ms::RoundPair> all = with_instances(pairs_with(d, block), 4, 4);
+  for (std::size_t r = 0; r < all.size(); ++r) {
+    if ((r * 7 + 3) % 10 < 5) half.push_back(all[r]);
+  }
+  const ms::PairedResult sampled = ms::analyze_pairs(half, mean_settings());
+  CHECK(sampled.raw.valid);
+  CHECK(sampled.raw.df > 0.5 * static_cast<double>(sampled.clusters));
+  CHECK(sampled.raw.df < static_cast<double>(sampled.clusters));
+  // One instance for the whole run: one cluster, no interval at all (nothing tells the instance from the code).
+  const ms::PairedResult one = ms::analyze_pairs(with_instances(pairs_with(d, block), 48, 48), mean_settings());
+  CHECK(one.clusters == 1);
+  CHECK_FALSE(one.raw.valid);
+  CHECK(one.decision == ms::Decision::kTooFewRounds);
+}
+
 TEST_CASE("rounds_for_power follows the 80 percent power formula", "[paired_analysis]") {
   const double expected = 7.85 * std::pow(0.05 / std::log(1.02), 2.0) + 2.0;
   CHECK(ms::rounds_for_power(0.05, 0.02) == Approx(expected).epsilon(1e-12));

@@ -4,6 +4,9 @@
 #         work is seen by the harness's clock (realized > 0 where the scheduler's own clock cannot see it: the
 #         work runs after run_frame returns); frontsteal-calibration-summary reads the file back (one real
 #         experiment, and resampled ones from the same file as a long run); a file without arms is refused.
+#         Instances: every arm names the scheduler instance of each round, a fresh one every pass here (the path
+#         is shorter than --instance-frames), and each comparison counts those clusters; with --instance-frames 2
+#         a fresh one every segment; with 0 one per run and no names (rounds analysed as independent).
 #   slow: the method on the real workload: +10 % planted must be found (the interval above 0) and the A/A twin
 #         must not be called faster or slower, at P = 1 and P = cores; up to 3 runs (a generous bound: each
 #         requirement fails by chance in a few % of runs at most).
@@ -37,7 +40,31 @@ for a in arms:
         assert a["realized_pct"] > 3, f"{a['arm']}: realized {a['realized_pct']} %: the harness's clock missed the planted work"
     if a["planted_pct"] == 0:
         assert a["realized_pct"] == 0
-print("calibration file: every arm present, 6 rounds each, planted work seen by the harness's clock")
+    for side in ("candidate", "reference"):
+        inst = a["rounds"][side]["instance"]
+        assert inst == [0, 0, 1, 1, 2, 2], f"{a['arm']} {side}: instances {inst}, expected a fresh one every pass"
+    assert a["comparison"]["clusters"] == 3, f"{a['arm']}: {a['comparison']['clusters']} clusters, expected 3"
+print("calibration file: every arm present, 6 rounds each, planted work seen by the harness's clock, "
+      "a fresh instance every pass")
+PY
+  for frames in 2 0; do
+    "$bin" --scene plant:1201 --schedulers queue-mutex,stealing/Fenced --threads 2 --frames 4 --round-frames 2 \
+      --repeats 2 --instance-frames $frames --no-plot --quiet --out "$out/instances-$frames" > "$out/instances-$frames.log" 2>&1 ||
+      { echo "FAIL: --instance-frames $frames: exit $?"; tail "$out/instances-$frames.log"; exit 1; }
+    python3 - "$out/instances-$frames/frontsteal.json" "$frames" <<'PY' || exit 1
+import json, sys
+doc, frames = json.load(open(sys.argv[1])), int(sys.argv[2])
+assert doc["design"]["instance_frames"] == frames
+assert doc["serial"]["rounds"]["instance"] == [-1] * 4, "the serial loop has no instance"
+for r in doc["results"]:
+    if r["scheduler"] == "serial":
+        continue
+    inst = r["rounds"]["instance"]
+    want = [0, 1, 2, 3] if frames == 2 else [-1] * 4
+    assert inst == want, f"{r['scheduler']}: instances {inst}, expected {want}"
+print(f"--instance-frames {frames}: instances as expected")
+PY
+  done
 PY
   "$summary" "$out/fast/frontsteal-calibration.json" --long "$out/fast/frontsteal-calibration.json" --rounds 4 \
     --experiments 20 --out "$out/summary" > "$out/summary.log" 2>&1 || { echo "FAIL: summary"; cat "$out/summary.log"; exit 1; }
