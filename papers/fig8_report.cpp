@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -17,6 +19,40 @@ namespace {
 // the noise verdict in the comparisons (schema 1, by hand, had no schema_version, program or kind; its
 // "verdict" was never "unreliable"); every key of schema 1 is kept.
 constexpr int kSchemaVersion = 2;
+
+// The band around the simulated curves: the validated model's held-out median |error| on speed-up ratios
+// (validation.md, "Ratios"), read from --validation (or DIR/validation.json). Ratios, because they are what the
+// validation could test on a machine whose speed changes; the band says how far a simulated point may be from
+// what this machine would measure, not a confidence interval.
+struct ErrorBand {
+  double pct = 0;      // 0: no band
+  std::string source;  // the file, or why there is no band
+};
+
+ErrorBand error_band(const PaperRun& run) {
+  const Options& o = run.options();
+  ErrorBand band;
+  const std::string file = !o.validation.empty() ? o.validation : (std::filesystem::path(o.out) / "validation.json").string();
+  std::ifstream in(file);
+  if (!in) {
+    band.source = o.validation.empty() ? "no validation.json beside the results: simulated curves without error band"
+                                       : "cannot read " + file + ": simulated curves without error band";
+    return band;
+  }
+  try {
+    const report::Json js = report::Json::parse(in);
+    for (const auto& r : js.at("ratio_summary")) {
+      if (r.at("ratios").get<std::string>().rfind("speed-up ratios", 0) == 0) {
+        band.pct = r.at("median_abs_error_pct").get<double>();
+        band.source = file + " (held-out median |error| of " + std::to_string(r.at("n").get<int>()) +
+                      " speed-up ratios)";
+      }
+    }
+  } catch (const std::exception& e) {
+    band.source = file + " unreadable (" + e.what() + "): simulated curves without error band";
+  }
+  return band;
+}
 
 // The curves at the P the paper's text names: measured rows, then simulated at 1-4, 8, 16, 32, 64 and the last.
 report::Table curve_table(const SceneCurves& c) {
@@ -52,7 +88,8 @@ report::Table verdict_table(const SceneCurves& c) {
   return t;
 }
 
-std::string markdown(const std::vector<SceneCurves>& all, PaperRun& run, const VerdictTally& tally) {
+std::string markdown(const std::vector<SceneCurves>& all, PaperRun& run, const VerdictTally& tally,
+                     const ErrorBand& band) {
   const Options& o = run.options();
   std::ostringstream md;
   md << "# Fig. 8: static vs global queue vs load stealing, tessellation rate against processors\n\n" << run.stamp()
@@ -64,7 +101,11 @@ std::string markdown(const std::vector<SceneCurves>& all, PaperRun& run, const V
         "with costs from calibration.md. Chase-Lev is not in the paper; it is the modern baseline.\n\n"
      << "The paper prints Fig. 8 as a plot; its text gives: the global queue is 5-10% faster than static, load "
         "stealing another 10-20% faster than the queue, and stealing scales close to linearly (Onyx, 4 CPUs; a "
-        "Challenge for more).\n\n![Fig. 8](fig8.png)\n";
+        "Challenge for more).\n\n![Fig. 8](fig8.png)\n\n"
+     << (band.pct > 0 ? "Shaded around each simulated curve: ±" + fixed(band.pct, 1) + " %, the simulator's " +
+                            band.source + "."
+                      : "Simulated curves without an error band: " + band.source + ".")
+     << "\n";
   for (const SceneCurves& c : all) {
     md << "\n## `" << c.scene << "` (" << c.surfaces << " surfaces; serial " << fixed(c.serial_fps, 2)
        << " frames/s from the trace)\n\n" << curve_table(c).markdown();
@@ -167,11 +208,13 @@ report::Json scene_json(const SceneCurves& c) {
 }
 
 // NAME-<s>.dat per scene and NAME.gp: a row of rate plots, a row of efficiency (% of ideal) plots.
-void write_plot(const std::vector<SceneCurves>& all, PaperRun& run, const std::string& name) {
+void write_plot(const std::vector<SceneCurves>& all, PaperRun& run, const std::string& name, const ErrorBand& band) {
+  const double e = band.pct / 100.0;
   std::ostringstream gp, gp_efficiency;
   gp << "set terminal pngcairo size 1500,900 font 'sans,10'\nset output '" << name << ".png'\n"
      << "set multiplot layout 2," << all.size() << " title \"Tessellation rate against processors: lines SIMULATED "
-        "(trace-driven), points MEASURED\\n" << machine_line() << ", commit " << run.commit() << "\"\n"
+        "(trace-driven)" << (e > 0 ? ", shaded +-" + fixed(band.pct, 1) + " % (held-out median error)" : ", no error band")
+     << ", points MEASURED\\n" << machine_line() << ", commit " << run.commit() << "\"\n"
      << "set grid\nset key left top font ',8'\nset xlabel 'processors P'\n";
   gp_efficiency << "set ylabel '% of ideal (serial trace x P)'\nset yrange [0:110]\nset key left bottom font ',8'\n";
   const char* colours[] = {"#d62728", "#ff7f0e", "#1f77b4", "#2ca02c"};
@@ -194,6 +237,14 @@ void write_plot(const std::vector<SceneCurves>& all, PaperRun& run, const std::s
        << "plot '" << dat << "' using 1:(" << c.serial_fps << "*$1) with lines dt 2 lc 'gray40' title 'ideal (serial x P)'";
     gp_efficiency << "set title '" << c.scene << ": efficiency'\nplot '" << dat << "' using 1:(100) with lines dt 2 "
                      "lc 'gray40' title 'ideal'";
+    for (std::size_t m = 0; e > 0 && m < kFig8ModelCount; ++m) {
+      const std::string col = "$" + std::to_string(2 + m);
+      gp << ", '' using 1:(" << col << "*" << 1 - e << "):(" << col << "*" << 1 + e
+         << ") with filledcurves fs transparent solid 0.15 noborder lc rgb '" << colours[m] << "' notitle";
+      gp_efficiency << ", '' using 1:(100*" << col << "*" << 1 - e << "/(" << c.serial_fps << "*$1)):(100*" << col << "*"
+                    << 1 + e << "/(" << c.serial_fps << "*$1)) with filledcurves fs transparent solid 0.15 noborder lc rgb '"
+                    << colours[m] << "' notitle";
+    }
     for (std::size_t m = 0; m < kFig8ModelCount; ++m) {
       gp << ", '' using 1:" << 2 + m << " with lines lw 2 lc rgb '" << colours[m] << "' title '" << kFig8Models[m].label
          << " (simulated)'";
@@ -228,8 +279,12 @@ void write_fig8(const std::vector<SceneCurves>& all, PaperRun& run, const std::s
   report::Json js = run.document(kSchemaVersion, name, measured ? "measured and simulated" : "simulated");
   js["scenes"] = report::Json::array();
   for (const SceneCurves& c : all) js["scenes"].push_back(scene_json(c));
-  write_plot(all, run, name);
-  const std::string md = markdown(all, run, tally);
+  const ErrorBand band = error_band(run);
+  if (!run.options().validation.empty() && !(band.pct > 0)) {
+    std::cerr << kPaperProgram << ": WARNING: " << band.source << '\n';
+  }
+  write_plot(all, run, name, band);
+  const std::string md = markdown(all, run, tally, band);
   run.dir().write(name + ".md", md);
   run.dir().write(name + ".csv", csv_table(all).csv());
   run.dir().write_json(name + ".json", js);

@@ -77,6 +77,11 @@ Options parse_options(int argc, char** argv, const std::vector<SubcommandSummary
           },
           ""));
   cli.seed(o.seed, "victim orders and annealing")->type_name("S")->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
+  cli.option("--validation", o.validation,
+             "fig8 / simulate: the simulator's held-out validation (validation.json, written by `validate`); its "
+             "median |error| on speed-up ratios is drawn as a band around every simulated curve (default: "
+             "DIR/validation.json when it exists; without one the curves have no band and the plot says so)")
+      ->type_name("FILE");
   bool no_plot = false;
   cli.flag("--no-plot", no_plot, "do not run gnuplot (the .gp scripts and .dat files are still written)");
   cli.quiet(o.quiet);

@@ -20,6 +20,7 @@ struct Options {
   std::vector<std::string> scenes;    // empty: the command's stand-ins
   std::string scene = "plant:5302";   // trace
   std::string trace, calibration;
+  std::string validation;             // fig8: validation.json whose held-out error draws the simulated curves' band
   int frames = 24, repeats = 3, passes = 3;
   WorkerId max_p = 64;
   int updates = 150;

@@ -1,6 +1,6 @@
 set terminal pngcairo size 1100,620 font 'sans,10'
 set output 'table1.png'
-set title "Table 1: utilization, round robin vs spatial partition\nAMD EPYC, 2 hardware threads, commit a430f3f"
+set title "Table 1: utilization, round robin vs spatial partition\nAMD EPYC, 2 hardware threads, commit fe327c7"
 set style data histograms
 set style histogram clustered gap 1
 set style fill solid 0.85 border -1

@@ -1,6 +1,6 @@
 set terminal pngcairo size 1100,560 font 'sans,10'
 set output 'table2.png'
-set multiplot layout 1,2 title "Table 2: greedy rendering, paper (SGI Onyx RE2) vs MEASURED here\nAMD EPYC, 2 hardware threads, commit a430f3f"
+set multiplot layout 1,2 title "Table 2: greedy rendering, paper (SGI Onyx RE2) vs MEASURED here\nAMD EPYC, 2 hardware threads, commit fe327c7"
 set style data histograms
 set style histogram clustered gap 1
 set style fill solid 0.85 border -1
