@@ -29,10 +29,10 @@ packages=(
   occt-misc calculix-cgx-examples gmsh-doc
   # every executable's options (CLI11) and results files (nlohmann-json): reporting/
   libcli11-dev nlohmann-json3-dev
-  # the main job's plots (schedulers/frontsteal_main.cpp writes a gnuplot script and runs it); oneTBB is
+  # the main job's plots (schedulers/main_job/frontsteal_main.cpp writes a gnuplot script and runs it); oneTBB is
   # listed above (libtbb-dev), OpenMP comes with g++ (libgomp)
   gnuplot-nox
-  # the end-to-end tests read the main job's JSON files (tests/schedulers/frontsteal_calibrate_test.sh)
+  # the end-to-end tests read the main job's JSON files (tests/schedulers/main_job/frontsteal_calibrate_test.sh)
   python3
   # the lock-free global queue peer, moodycamel-queue (schedulers/concurrent_queue_scheduler.hpp): header-only
   libconcurrentqueue-dev

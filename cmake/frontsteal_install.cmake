@@ -21,13 +21,12 @@ install(TARGETS frontsteal_core frontsteal_schedulers frontsteal_tessellate fron
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})  # include dirs: $<INSTALL_INTERFACE:> on each target
 install(EXPORT frontsteal-targets NAMESPACE frontsteal:: DESTINATION ${FRONTSTEAL_INSTALL_CMAKEDIR})
 
-# Headers by directory (non-recursive: benchmarks/, results/, fuzz/ stay out), so a header added to one of these
-# directories is installed without editing this file. The Open CASCADE importer's headers are left out: its
-# library is not installed; so are the main job's pieces (schedulers/main_job_*.hpp: the frontsteal executable's).
+# Headers by directory (non-recursive: benchmarks/, fuzz/ and the main job's schedulers/main_job/ stay out: the
+# frontsteal executable's pieces are not a library), so a header added to one of these directories is installed
+# without editing this file. The Open CASCADE importer's headers are left out: its library is not installed.
 foreach(_dir core schedulers tessellate reporting measure)
   file(GLOB _headers CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/${_dir}/*.hpp)
   list(FILTER _headers EXCLUDE REGEX "/(occt_import|isolated_import)\\.hpp$")
-  list(FILTER _headers EXCLUDE REGEX "/(main_job_[a-z_]+|calibration_summary|rounds_json)\\.hpp$")  # the programs' pieces: not a library
   install(FILES ${_headers} DESTINATION ${FRONTSTEAL_INSTALL_INCLUDEDIR}/${_dir})
 endforeach()
 

@@ -1,5 +1,5 @@
 // validation.hpp — does the simulator agree with measurement? Predictions of the main job's path times
-// (schedulers/frontsteal_main.cpp, results in frontsteal.json) from cost traces, against what it measured.
+// (schedulers/main_job/frontsteal_main.cpp, results in frontsteal.json) from cost traces, against what it measured.
 //
 // Held out: the model's constants come from microbenchmarks (calibration.hpp) and from ONE measured set, the
 // calibration set (a path without interference); every other set is predicted without refitting anything.

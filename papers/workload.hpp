@@ -1,7 +1,7 @@
 // workload.hpp — the measured side of papers/: a scene tessellated along the camera path by the real
 // schedulers (schedulers/registry.hpp), and the serial per-surface cost trace the simulator replays.
 //
-// The same path and settings as the main job (schedulers/frontsteal_main.cpp): an orbit of the whole model,
+// The same path and settings as the main job (schedulers/main_job/frontsteal_main.cpp): an orbit of the whole model,
 // then a zoom into a corner, 1 px tolerance, 1280x720. Every measured frame is audited (each surface exactly
 // once, triangle count equal to the serial loop's); a failed audit throws.
 #pragma once

@@ -4,6 +4,10 @@
 Every `#include "folder/..."` line in a layer's sources is an edge layer -> folder. The check fails when an
 edge is not drawn in the picture's mermaid graph, or when a drawn edge has no include behind it. tests/ and
 examples/ may include anything.
+
+A layer is a top-level folder, or a subfolder the graph declares as a node of its own with its path as the
+label, e.g. `main_job["schedulers/main_job"]`: its files then belong to it and not to the folder above, and an
+include of a file under it is an edge to it.
 """
 import argparse
 import pathlib
@@ -12,28 +16,50 @@ import sys
 
 FREE = {"tests", "examples"}
 SOURCES = {".hpp", ".cpp", ".h", ".cc"}
-INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+/[^"]*)"')
 EDGE = re.compile(r"^\s*([a-z_]+)\s*-->\s*([a-z_]+)\s*$")
+NODE = re.compile(r'^\s*([a-z_]+)\["?([a-z_/]+)"?\]\s*$')
 
 
-def drawn_edges(doc: pathlib.Path):
+def picture(doc: pathlib.Path):
+    """The drawn edges, and every layer's folder (the node's label where it declares one, else its name)."""
     text = doc.read_text(encoding="utf-8")
     block = re.search(r"```mermaid\n(.*?)```", text, re.S)
     if not block:
         sys.exit(f"check_layers: no mermaid graph in {doc}")
-    return {m.groups() for line in block.group(1).splitlines() if (m := EDGE.match(line))}
+    lines = block.group(1).splitlines()
+    edges = {m.groups() for line in lines if (m := EDGE.match(line))}
+    folders = {a: a for edge in edges for a in edge}
+    folders.update({m.group(1): m.group(2) for line in lines if (m := NODE.match(line))})
+    return edges, folders
 
 
-def include_edges(root: pathlib.Path, layers):
+def layer_of(relative: str, folders):
+    """The layer whose folder is the longest prefix of a repository-relative path (None: no layer's)."""
+    best = None
+    for layer, folder in folders.items():
+        if relative.startswith(folder + "/") and (best is None or len(folder) > len(folders[best])):
+            best = layer
+    return best
+
+
+def include_edges(root: pathlib.Path, folders):
     edges = {}
-    for layer in layers:
-        for path in sorted((root / layer).rglob("*")):
-            if path.suffix not in SOURCES or not path.is_file():
+    tops = sorted({folder.split("/")[0] for folder in folders.values()})
+    for path in sorted(p for top in tops for p in (root / top).rglob("*")):
+        if path.suffix not in SOURCES or not path.is_file():
+            continue
+        relative = path.relative_to(root).as_posix()
+        layer = layer_of(relative, folders)
+        if layer is None:
+            continue
+        for number, line in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), 1):
+            m = INCLUDE.match(line)
+            if not m or not (root / m.group(1).split("/")[0]).is_dir():
                 continue
-            for number, line in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), 1):
-                m = INCLUDE.match(line)
-                if m and m.group(1) != layer and (root / m.group(1)).is_dir():
-                    edges.setdefault((layer, m.group(1)), f"{path.relative_to(root)}:{number}")
+            target = layer_of(m.group(1), folders)
+            if target is not None and target != layer:
+                edges.setdefault((layer, target), f"{relative}:{number}")
     return edges
 
 
@@ -42,17 +68,17 @@ def main():
     parser.add_argument("--root", default=".", help="repository root [default .]")
     args = parser.parse_args()
     root = pathlib.Path(args.root)
-    drawn = drawn_edges(root / "docs" / "architecture.md")
-    layers = sorted({a for a, _ in drawn} | {b for _, b in drawn})
-    found = include_edges(root, layers)
+    drawn, folders = picture(root / "docs" / "architecture.md")
+    layers = sorted(folders)
+    found = include_edges(root, folders)
     wrong = sorted(e for e in found if e not in drawn)
     unused = sorted(e for e in drawn if e not in found)
     for (a, b), where in sorted(found.items()):
         print(f"{a} -> {b}   e.g. {where}")
     for a, b in wrong:
-        print(f"FAIL: {a}/ includes {b}/ ({found[(a, b)]}), an arrow docs/architecture.md does not draw")
+        print(f"FAIL: {folders[a]}/ includes {folders[b]}/ ({found[(a, b)]}), an arrow docs/architecture.md does not draw")
     for a, b in unused:
-        print(f"FAIL: docs/architecture.md draws {a} --> {b}, but no file of {a}/ includes {b}/")
+        print(f"FAIL: docs/architecture.md draws {a} --> {b}, but no file of {folders[a]}/ includes {folders[b]}/")
     if wrong or unused:
         return 1
     print(f"PASS: {len(found)} include edges between {len(layers)} layers, all drawn, every arrow used")

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# run_calibration.sh — the calibration of the main job's method on this machine, regenerated: real experiments
+# run_calibration_2core.sh — the calibration of the main job's method on this machine, regenerated: real experiments
 # (one `frontsteal --calibrate` run each), a long run to resample experiments of a default run's size from, and
 # the 2-core study (every path, without and with a pinned co-runner, each a default run with the calibration arms
 # in it); then frontsteal-calibration-summary over all of it. Nothing else should run on the machine meanwhile
@@ -12,7 +12,7 @@
 #   study-PATH-SETUP  frontsteal --calibrate --path PATH [--interference 50,pinned]
 #                PATH orbit-then-zoom (README command 1's), walkthrough, dense-zoom; SETUP none or pinned
 #
-# usage: run_calibration.sh BUILD_DIR OUT_DIR [RUNS]   (RUNS default 20)
+# usage: run_calibration_2core.sh BUILD_DIR OUT_DIR [RUNS]   (RUNS default 20)
 set -uo pipefail
 if [[ $# -lt 2 || $1 == --help || $1 == -h ]]; then
   sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'

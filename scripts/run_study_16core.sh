@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# run_study.sh — the P = 1 … 16 study in rounds, on a machine with 16 or more cores, in one bounded pass: the main
+# run_study_16core.sh — the P = 1 … 16 study in rounds, on a machine with 16 or more cores, in one bounded pass: the main
 # job with its calibration arms (every scheduler, P = 1, 2, 4, 8, 16; random order within rounds; verdicts
 # against the margin), then P = 16 beside a co-runner pinned to worker 0's core. Each step under its own time
 # limit; results land in OUT_DIR, one folder per step, with machine.txt and steps.txt (exit status, seconds).
@@ -9,7 +9,7 @@
 # Debian 12 build. On a Debian 12 machine that ran bootstrap.sh, BIN_DIR can be a folder of links to
 # build/release's executables. Plots: run with --no-plot there; `gnuplot frontsteal.gp` in each folder draws them.
 #
-# usage: run_study.sh BIN_DIR OUT_DIR [--passes N] [--threads L] [--round-frames F]
+# usage: run_study_16core.sh BIN_DIR OUT_DIR [--passes N] [--threads L] [--round-frames F]
 #        (defaults: the committed run: 4 passes, P = 1,4,16, rounds of 2 frames)
 set -uo pipefail
 
@@ -17,7 +17,7 @@ if [[ $# -lt 2 || $1 == --help || $1 == -h ]]; then
   sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 fi
-bin=$(cd "$1" && pwd) || { echo "run_study.sh: BIN_DIR $1 does not exist" >&2; exit 2; }
+bin=$(cd "$1" && pwd) || { echo "run_study_16core.sh: BIN_DIR $1 does not exist" >&2; exit 2; }
 out=$2
 shift 2
 passes=4 threads=1,4,16 round_frames=2
@@ -26,7 +26,7 @@ while [[ $# -gt 0 ]]; do
     --passes) passes=$2; shift 2 ;;
     --round-frames) round_frames=$2; shift 2 ;;
     --threads) threads=$2; shift 2 ;;
-    *) echo "run_study.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
+    *) echo "run_study_16core.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
 done
 mkdir -p "$out"
@@ -43,7 +43,7 @@ out=$(cd "$out" && pwd)
   command -v lscpu > /dev/null && lscpu | grep -E 'Model name|Socket|Core|Thread|NUMA node|L3|MHz' | sed 's/^/lscpu: /'
 } > "$out/machine.txt" 2>&1
 cat "$out/machine.txt"
-"$bin/frontsteal" --help > /dev/null || { echo "run_study.sh: $bin/frontsteal does not start" >&2; exit 3; }
+"$bin/frontsteal" --help > /dev/null || { echo "run_study_16core.sh: $bin/frontsteal does not start" >&2; exit 3; }
 
 step() {
   local name=$1 limit=$2

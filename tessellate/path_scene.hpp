@@ -1,7 +1,7 @@
 // path_scene.hpp — a scene made ready to be tessellated frame by frame along a camera path: the model, its
 // prepared surfaces, one triangle buffer per surface and, per frame, the camera and its frustum.
 //
-// Why one type: the main job (schedulers/main_job_workload.hpp), frontsteal-paper (papers/workload.hpp) and
+// Why one type: the main job (schedulers/main_job/workload.hpp), frontsteal-paper (papers/workload.hpp) and
 // frontsteal-mpi (distributed/mpi_workload.hpp) all tessellate "scene S along path K for F frames"; built
 // here once, their frames are the same views and cannot drift apart.
 //

@@ -1,6 +1,6 @@
-// main_job_analysis.cpp — the main job's analysis (main_job_analysis.hpp): verdicts and noise, the camera
+// analysis.cpp — the main job's analysis (analysis.hpp): verdicts and noise, the camera
 // path's line, the round-robin cost spread and the summary lines.
-#include "schedulers/main_job_analysis.hpp"
+#include "schedulers/main_job/analysis.hpp"
 
 #include <unistd.h>
 

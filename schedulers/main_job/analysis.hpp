@@ -1,12 +1,12 @@
-// main_job_analysis.hpp — what the main job's measurements say: per scheduler and P the medians, speed-up,
+// analysis.hpp — what the main job's measurements say: per scheduler and P the medians, speed-up,
 // utilization and the two paired comparisons (against the serial loop and against queue-mutex at the same P)
 // from the rounds (measure/paired_analysis.hpp: per-round log-ratios, a t interval, raw and probe-adjusted,
 // verdicts against the margin), marked unreliable only where something invalidated them; the short answer
 // (stealing against the locked queue and the best other scheduler, per P); the calibration arms' verdicts; the
 // round-robin cost spread; and the one-line summaries the terminal, frontsteal.md and frontsteal.json share.
 //
-// Why apart from the writers: the table, the JSON and the plots (main_job_tables.hpp, main_job_json.hpp,
-// main_job_plots.hpp) read one Analysis, so they cannot disagree.
+// Why apart from the writers: the table, the JSON and the plots (tables.hpp, json.hpp,
+// plots.hpp) read one Analysis, so they cannot disagree.
 #pragma once
 
 #include <cstddef>
@@ -18,8 +18,8 @@
 #include "measure/cpu_speed_probe.hpp"
 #include "measure/paired_analysis.hpp"
 #include "reporting/json.hpp"
-#include "schedulers/main_job_report.hpp"
-#include "schedulers/round_robin_spread.hpp"
+#include "schedulers/main_job/report.hpp"
+#include "schedulers/main_job/round_robin_spread.hpp"
 
 namespace frontsteal::main_job {
 

@@ -1,6 +1,6 @@
 // calibration_summary.cpp — reading calibration files, tallying real and resampled experiments, and the report
 // (calibration_summary.hpp).
-#include "schedulers/calibration_summary.hpp"
+#include "schedulers/main_job/calibration_summary.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "reporting/table.hpp"
-#include "schedulers/rounds_json.hpp"
+#include "schedulers/main_job/rounds_json.hpp"
 
 namespace frontsteal::main_job {
 

@@ -9,7 +9,7 @@
 #include "measure/machine_info.hpp"
 #include "reporting/command_line.hpp"
 #include "reporting/results_dir.hpp"
-#include "schedulers/calibration_summary.hpp"
+#include "schedulers/main_job/calibration_summary.hpp"
 
 namespace mj = frontsteal::main_job;
 

@@ -1,5 +1,5 @@
-// main_job_cell.cpp — the per-frame accounting and audits of a main-job cell (main_job_cell.hpp).
-#include "schedulers/main_job_cell.hpp"
+// cell.cpp — the per-frame accounting and audits of a main-job cell (cell.hpp).
+#include "schedulers/main_job/cell.hpp"
 
 #include <algorithm>
 #include <sstream>

@@ -1,4 +1,4 @@
-// main_job_cell.hpp — one scheduler at one P in the main job (Cell), and the per-frame accounting every run
+// cell.hpp — one scheduler at one P in the main job (Cell), and the per-frame accounting every run
 // of it goes through, whether the frame ran in this process or in the openmp-static-steal child.
 //
 // Why one function for both: the in-process path and the child path gather the same totals and apply the

@@ -11,7 +11,7 @@
 #include "reporting/command_line.hpp"
 #include "reporting/json.hpp"
 #include "reporting/table.hpp"
-#include "schedulers/rounds_json.hpp"
+#include "schedulers/main_job/rounds_json.hpp"
 
 namespace {
 

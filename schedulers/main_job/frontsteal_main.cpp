@@ -4,26 +4,26 @@
 // tessellated along a deterministic camera path — half an orbit of the whole model, half a zoom into a small
 // corner region, where round robin becomes badly imbalanced (paper §3) — by a serial loop (T1) and by every
 // scheduler at P = 1 … cores and oversubscribed, in rounds: every arm once per segment of the path, in a fresh
-// random order each round (main_job_run.hpp); the verdicts come from the per-round paired log-ratios against a
+// random order each round (run.hpp); the verdicts come from the per-round paired log-ratios against a
 // margin (measure/paired_analysis.hpp). Every frame is
 // audited: each surface ran exactly once, the frame's triangle count equals the serial loop's, and every
 // surface passed the tessellation's own audit (trimmed pieces tiled exactly, area equal to the trim loops').
 //
-// The pieces, one concept each: the options (main_job_options.hpp, CLI11), the workload and its serial
-// warm-up pass (main_job_workload.hpp), the measurement (main_job_run.hpp) and the report
-// (main_job_report.hpp: table, markdown, CSV, JSON and gnuplot through reporting/). This file only joins them,
+// The pieces, one concept each: the options (options.hpp, CLI11), the workload and its serial
+// warm-up pass (workload.hpp), the measurement (run.hpp) and the report
+// (report.hpp: table, markdown, CSV, JSON and gnuplot through reporting/). This file only joins them,
 // after handing any other subcommand to its program (subcommands.hpp).
 #include <algorithm>
 #include <string>
 #include <vector>
 
 #include "measure/noise_monitor.hpp"
-#include "schedulers/main_job_options.hpp"
-#include "schedulers/main_job_progress.hpp"
-#include "schedulers/main_job_report.hpp"
-#include "schedulers/main_job_run.hpp"
-#include "schedulers/main_job_workload.hpp"
-#include "schedulers/subcommands.hpp"
+#include "schedulers/main_job/options.hpp"
+#include "schedulers/main_job/progress.hpp"
+#include "schedulers/main_job/report.hpp"
+#include "schedulers/main_job/run.hpp"
+#include "schedulers/main_job/workload.hpp"
+#include "schedulers/main_job/subcommands.hpp"
 
 namespace mj = frontsteal::main_job;
 namespace nz = frontsteal::noise;

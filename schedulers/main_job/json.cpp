@@ -1,11 +1,11 @@
-// main_job_json.cpp — frontsteal.json (main_job_json.hpp).
-#include "schedulers/main_job_json.hpp"
+// json.cpp — frontsteal.json (json.hpp).
+#include "schedulers/main_job/json.hpp"
 
 #include <cmath>
 
 #include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
-#include "schedulers/rounds_json.hpp"
+#include "schedulers/main_job/rounds_json.hpp"
 
 namespace frontsteal::main_job {
 

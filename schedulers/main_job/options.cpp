@@ -1,6 +1,6 @@
-// main_job_options.cpp — frontsteal's command line (main_job_options.hpp): the --help text, --list, and every
+// options.cpp — frontsteal's command line (options.hpp): the --help text, --list, and every
 // option through report::CommandLine (CLI11), with the checks CLI11 cannot express as validators.
-#include "schedulers/main_job_options.hpp"
+#include "schedulers/main_job/options.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -16,7 +16,7 @@
 #include "reporting/command_line.hpp"
 #include "schedulers/llvm_openmp_child.hpp"
 #include "schedulers/registry.hpp"
-#include "schedulers/subcommands.hpp"
+#include "schedulers/main_job/subcommands.hpp"
 
 namespace frontsteal::main_job {
 

@@ -1,8 +1,8 @@
-// main_job_options.hpp — the main job's (frontsteal) options, and their parsing through report::CommandLine
+// options.hpp — the main job's (frontsteal) options, and their parsing through report::CommandLine
 // (CLI11): every flag, its default, its range, and the usage errors (exit 2, naming the flag).
 //
-// Why apart from the main: the options are the main job's interface; the measurement (main_job_run.hpp) and
-// the report (main_job_report.hpp) read them, and the main only hands them over.
+// Why apart from the main: the options are the main job's interface; the measurement (run.hpp) and
+// the report (report.hpp) read them, and the main only hands them over.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
-// main_job_plots.cpp — frontsteal-speedup.dat, frontsteal-frames.dat and frontsteal.gp (main_job_plots.hpp).
-#include "schedulers/main_job_plots.hpp"
+// plots.cpp — frontsteal-speedup.dat, frontsteal-frames.dat and frontsteal.gp (plots.hpp).
+#include "schedulers/main_job/plots.hpp"
 
 #include <algorithm>
 #include <sstream>

@@ -1,4 +1,4 @@
-// main_job_progress.hpp — the main job's progress lines on stderr: "[done/total elapsed, ~left] what".
+// progress.hpp — the main job's progress lines on stderr: "[done/total elapsed, ~left] what".
 //
 // Why its own header: the measurement steps it, the main reads the elapsed time for the closing line.
 #pragma once

@@ -1,7 +1,7 @@
-// main_job_report.cpp — the main job's reporting (main_job_report.hpp): the heading and the table on stdout,
+// report.cpp — the main job's reporting (report.hpp): the heading and the table on stdout,
 // frontsteal.md, and the closing lines; the analysis, the tables, the JSON and the plots come from their own
-// files (main_job_analysis.hpp, main_job_tables.hpp, main_job_json.hpp, main_job_plots.hpp).
-#include "schedulers/main_job_report.hpp"
+// files (analysis.hpp, tables.hpp, json.hpp, plots.hpp).
+#include "schedulers/main_job/report.hpp"
 
 #include <iostream>
 #include <sstream>
@@ -9,10 +9,10 @@
 #include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
 #include "reporting/table.hpp"
-#include "schedulers/main_job_analysis.hpp"
-#include "schedulers/main_job_json.hpp"
-#include "schedulers/main_job_plots.hpp"
-#include "schedulers/main_job_tables.hpp"
+#include "schedulers/main_job/analysis.hpp"
+#include "schedulers/main_job/json.hpp"
+#include "schedulers/main_job/plots.hpp"
+#include "schedulers/main_job/tables.hpp"
 
 namespace frontsteal::main_job {
 

@@ -1,9 +1,9 @@
-// main_job_report.hpp — what the main job (frontsteal, frontsteal_main.cpp) measured (Measured), and its
-// reporting: the analysis (main_job_analysis.hpp: verdicts, noise, round-robin cost spread), then the table on
-// stdout and frontsteal.{md,csv,json} plus the gnuplot data, script and PNGs (main_job_tables.hpp,
-// main_job_json.hpp, main_job_plots.hpp), all through reporting/.
+// report.hpp — what the main job (frontsteal, frontsteal_main.cpp) measured (Measured), and its
+// reporting: the analysis (analysis.hpp: verdicts, noise, round-robin cost spread), then the table on
+// stdout and frontsteal.{md,csv,json} plus the gnuplot data, script and PNGs (tables.hpp,
+// json.hpp, plots.hpp), all through reporting/.
 //
-// Why apart from the main: the main parses, measures (main_job_run.hpp) and hands over a Measured; how a result
+// Why apart from the main: the main parses, measures (run.hpp) and hands over a Measured; how a result
 // is judged and written is here, in named pieces.
 #pragma once
 
@@ -12,9 +12,9 @@
 
 #include "measure/noise_monitor.hpp"
 #include "measure/pass_usage.hpp"
-#include "schedulers/main_job_cell.hpp"
-#include "schedulers/main_job_options.hpp"
-#include "schedulers/main_job_workload.hpp"
+#include "schedulers/main_job/cell.hpp"
+#include "schedulers/main_job/options.hpp"
+#include "schedulers/main_job/workload.hpp"
 
 namespace frontsteal::main_job {
 

@@ -1,6 +1,6 @@
-// main_job_run.cpp — the main job's measurement (main_job_run.hpp): set-up of every cell, the serial loop's and
+// run.cpp — the main job's measurement (run.hpp): set-up of every cell, the serial loop's and
 // the schedulers' segments (in process and in the child), the rounds, --repeats auto and the noise monitor.
-#include "schedulers/main_job_run.hpp"
+#include "schedulers/main_job/run.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -19,7 +19,7 @@
 #include "measure/heap_offset.hpp"
 #include "measure/round_order.hpp"
 #include "reporting/table.hpp"
-#include "schedulers/round_robin_spread.hpp"
+#include "schedulers/main_job/round_robin_spread.hpp"
 
 namespace frontsteal::main_job {
 

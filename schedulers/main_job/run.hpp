@@ -1,4 +1,4 @@
-// main_job_run.hpp — the main job's measurement: every arm (the serial loop, every scheduler at every P, and
+// run.hpp — the main job's measurement: every arm (the serial loop, every scheduler at every P, and
 // under --calibrate the calibration arms) set up with one untimed warm-up frame, then ROUNDS: a round covers one
 // segment of the path (--round-frames frames) at one P and runs the serial loop and every arm at that P once on
 // it, in the order measure/round_order.hpp gives for that round (random by default). A pass is one round per
@@ -13,7 +13,7 @@
 //
 // Roles: the main thread runs the serial loop (T1) and drives the schedulers; each cell's scheduler (or, for
 // openmp-static-steal, its child process) runs the frames. Every frame goes through account_frame
-// (main_job_cell.hpp): the same totals and audits whichever way it ran.
+// (cell.hpp): the same totals and audits whichever way it ran.
 // Reaping: the co-runner and the children belong to this object; its destructor stops and reaps them on
 // every way out of main (PR_SET_PDEATHSIG covers std::exit and being killed).
 #pragma once
@@ -29,10 +29,10 @@
 #include "measure/interference.hpp"
 #include "measure/noise_monitor.hpp"
 #include "measure/pass_usage.hpp"
-#include "schedulers/main_job_cell.hpp"
-#include "schedulers/main_job_options.hpp"
-#include "schedulers/main_job_progress.hpp"
-#include "schedulers/main_job_workload.hpp"
+#include "schedulers/main_job/cell.hpp"
+#include "schedulers/main_job/options.hpp"
+#include "schedulers/main_job/progress.hpp"
+#include "schedulers/main_job/workload.hpp"
 
 namespace frontsteal::main_job {
 

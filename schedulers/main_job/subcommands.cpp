@@ -1,5 +1,5 @@
 // subcommands.cpp — the subcommand table, where each program is found, and the hand-over (subcommands.hpp).
-#include "schedulers/subcommands.hpp"
+#include "schedulers/main_job/subcommands.hpp"
 
 #include <unistd.h>
 

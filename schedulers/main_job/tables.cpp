@@ -1,5 +1,5 @@
-// main_job_tables.cpp — the main job's shown table and data table (main_job_tables.hpp).
-#include "schedulers/main_job_tables.hpp"
+// tables.cpp — the main job's shown table and data table (tables.hpp).
+#include "schedulers/main_job/tables.hpp"
 
 #include <string>
 #include <vector>

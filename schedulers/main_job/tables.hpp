@@ -1,10 +1,10 @@
-// main_job_tables.hpp — the main job's two tables (report::Table): the one the terminal and frontsteal.md show
+// tables.hpp — the main job's two tables (report::Table): the one the terminal and frontsteal.md show
 // (rounded, with verdict texts), and the data table frontsteal.csv and each row of frontsteal.json's results[]
 // are made of (full precision, one column per value).
 #pragma once
 
 #include "reporting/table.hpp"
-#include "schedulers/main_job_analysis.hpp"
+#include "schedulers/main_job/analysis.hpp"
 
 namespace frontsteal::main_job {
 

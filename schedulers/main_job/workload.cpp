@@ -1,6 +1,6 @@
-// main_job_workload.cpp — the main job's workload (main_job_workload.hpp): the scene's preparation and the
+// workload.cpp — the main job's workload (workload.hpp): the scene's preparation and the
 // serial warm-up pass.
-#include "schedulers/main_job_workload.hpp"
+#include "schedulers/main_job/workload.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,7 +1,7 @@
-// main_job_workload.hpp — the main job's workload: the scene loaded and prepared once with its camera path
+// workload.hpp — the main job's workload: the scene loaded and prepared once with its camera path
 // (Workload), and the serial warm-up pass that sets the reference triangle counts (warm_up).
 //
-// Why apart from the main: the measurement (main_job_run.hpp) and the report read the same Workload; how it
+// Why apart from the main: the measurement (run.hpp) and the report read the same Workload; how it
 // is made is one concept, the timing loops another.
 #pragma once
 
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/id_range.hpp"
-#include "schedulers/main_job_options.hpp"
+#include "schedulers/main_job/options.hpp"
 #include "schedulers/registry.hpp"
 #include "tessellate/frame_workload.hpp"
 #include "tessellate/path_scene.hpp"

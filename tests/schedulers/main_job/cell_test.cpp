@@ -1,8 +1,8 @@
-// main_job_cell_test.cpp — the main job's per-frame accounting (schedulers/main_job_cell.hpp), shared by the
+// main_job_cell_test.cpp — the main job's per-frame accounting (schedulers/main_job/cell.hpp), shared by the
 // in-process and the child path: a clean frame adds its totals and fails nothing; each of the three audits
 // (exactly once, the tessellation's own audit, the triangle count) is caught on its own, and the first
 // problem is kept with its frame.
-#include "schedulers/main_job_cell.hpp"
+#include "schedulers/main_job/cell.hpp"
 
 #include <catch2/catch.hpp>
 

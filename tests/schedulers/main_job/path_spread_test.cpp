@@ -10,7 +10,7 @@
 #include <functional>
 #include <iostream>
 
-#include "schedulers/round_robin_spread.hpp"
+#include "schedulers/main_job/round_robin_spread.hpp"
 #include "tessellate/camera_path.hpp"
 #include "tessellate/scene_generator.hpp"
 #include "tessellate/surface_tessellator.hpp"

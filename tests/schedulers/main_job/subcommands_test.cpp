@@ -1,9 +1,9 @@
-// `frontsteal <subcommand>` (schedulers/subcommands.hpp):
+// `frontsteal <subcommand>` (schedulers/main_job/subcommands.hpp):
 //   - every subcommand has a unique name and a summary, and --help's list names every one;
 //   - a program is found beside the executable first, then in its folder of the build tree, then on PATH, and
 //     not at all when it is in none of them (a file that is not executable does not count);
 //   - `run` and bare options stay in this process; an unknown word is a usage error (exit status 2).
-#include "schedulers/subcommands.hpp"
+#include "schedulers/main_job/subcommands.hpp"
 
 #include <catch2/catch.hpp>
 
