@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <sstream>
 
@@ -46,6 +47,17 @@ report::Json interval_json(const measure::LogInterval& li) {
 }
 
 double finite_or(double v, double otherwise) { return std::isfinite(v) ? v : otherwise; }
+
+// A path as the reports show it: relative to the working directory when it lies below it, so that a committed
+// report names the repository's build folder rather than the machine it was made on.
+std::string shown_path(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path cwd = std::filesystem::current_path(ec);
+  if (ec) return path;
+  const std::filesystem::path rel = std::filesystem::path(path).lexically_relative(cwd);
+  if (rel.empty() || *rel.begin() == "..") return path;
+  return rel.string();
+}
 
 std::string instances_text(const Options& o) {
   if (o.instance_frames <= 0) return "one instance of each scheduler for the whole run";
@@ -422,7 +434,7 @@ void summary_lines(const Measured& m, Analysis& a) {
   std::ostringstream child;  // how openmp-static-steal ran, and the proof that static_steal was in effect
   for (const Cell& c : m.cells) {
     if (c.child) {
-      child << sc::kLlvmOpenMpName << " P=" << c.workers << ": child process " << sc::llvm_openmp_child_path()
+      child << sc::kLlvmOpenMpName << " P=" << c.workers << ": child process " << shown_path(sc::llvm_openmp_child_path())
             << " (clang++-14, libomp; per-item code compiled by clang), " << c.child->ready_line()
             << "; steals = chunks run off their static owner\n";
     }
