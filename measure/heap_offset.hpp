@@ -8,8 +8,8 @@
 // instance sits exactly where the old one did. The block is 16 B to 96 KiB in 16-byte steps: below malloc's
 // mmap threshold (128 KiB), so it comes from the same heap as the instance and shifts it.
 //
-// Use: construct the HeapOffset, then the instance; destroy the instance, then the offset (hold both in one
-// object, the offset declared first).
+// Use: construct the HeapOffset (or redraw() it), then the instance; destroy the instance, then the offset
+// (hold both in one object, the offset declared first).
 #pragma once
 
 #include <cstddef>
@@ -24,7 +24,10 @@ class HeapOffset {
  public:
   HeapOffset() = default;
   // The size is drawn from (seed, draw): a run is reproducible, every instance of it at its own offset.
-  HeapOffset(std::uint64_t seed, std::uint64_t draw) {
+  HeapOffset(std::uint64_t seed, std::uint64_t draw) { redraw(seed, draw); }
+  // A fresh offset: the old block is freed first, so the new one is drawn from the heap as it is now.
+  void redraw(std::uint64_t seed, std::uint64_t draw) {
+    block_.reset();
     stats::SplitMix64 rng(seed ^ (0x9e37'79b9'7f4a'7c15ull * (draw + 1)));
     bytes_ = 16 * (1 + rng.index(kMaxBytes / 16));
     block_ = std::make_unique<std::byte[]>(bytes_);

@@ -115,8 +115,7 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
   std::uint64_t draws = 0;
   auto renew = [&](Cell& c) {
     c.instance.reset();
-    c.heap_offset = measure::HeapOffset();
-    c.heap_offset = measure::HeapOffset(o.seed, draws++);
+    c.heap_offset.redraw(o.seed, draws++);
     c.instance = c.info->make({.workers = c.run.workers, .items = n, .seed = o.seed}, wl.hints());
     auto warm = [&](ItemId id, WorkerId w) { wl.tessellate(0, id, w); };
     c.instance->run_frame(warm);

@@ -160,8 +160,7 @@ bool Measurement::start_child(Cell& c) {
 // instance's placement becomes noise the clusters measure instead of a constant of the run.
 std::unique_ptr<sc::Scheduler> Measurement::make_instance(Cell& c, std::uint64_t draw) {
   c.instance.reset();
-  c.heap_offset = measure::HeapOffset();
-  c.heap_offset = measure::HeapOffset(o_.seed, draw);
+  c.heap_offset.redraw(o_.seed, draw);
   const sc::SchedulerInfo* info = sc::find_scheduler(c.scheduler);
   sc::SchedulerConfig config{.workers = c.workers, .items = static_cast<ItemId>(wl_.model.surfaces.size()),
                              .grain = o_.grain, .seed = o_.seed};
