@@ -13,7 +13,7 @@
 //                is at-least-once (duplicates removed), installs every worker's list for frame k+1 (so all
 //                lists are stealable from the first instant of the frame), re-arms termination (E4),
 //                publishes done (E5).
-//   observer     any other thread (a watchdog, core/watchdog.hpp) may call debug_state() at any time: relaxed
+//   observer     any other thread (a watchdog, stress/watchdog.hpp) may call debug_state() at any time: relaxed
 //                atomic reads of the slots and counters, outside every labelled site, so it neither orders nor
 //                perturbs anything; what it returns is a racy, diagnostic picture (workers_snapshot.hpp).
 //
@@ -198,7 +198,7 @@ class StealingWorkers {
   // Every worker's Front, End, ListTransient and LockList, the active count and the frame counters, read
   // with relaxed atomic loads (Access::peek): no labelled site, no order, no fence, so taking a snapshot does
   // not change the protocol it observes. Racy by design and not one consistent cut (workers_snapshot.hpp);
-  // for watchdogs (core/watchdog.hpp) and failure reports only. Needs a backend with peek (std, chaos).
+  // for watchdogs (stress/watchdog.hpp) and failure reports only. Needs a backend with peek (std, chaos).
   WorkersSnapshot debug_state() const {
     WorkersSnapshot s;
     s.workers.reserve(worker_count_);

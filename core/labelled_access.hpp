@@ -64,7 +64,7 @@ struct Access {
     static_assert(info(S).kind == SiteKind::kLoad, "site is not a load");
     Backend::wait_while_equal(a, old, Policy::order(S), S, where);
   }
-  // Diagnostics only (watchdog snapshots, core/watchdog.hpp), never a protocol step: a relaxed atomic read
+  // Diagnostics only (watchdog snapshots, stress/watchdog.hpp), never a protocol step: a relaxed atomic read
   // from a thread outside the protocol. Racy by design (the value may be stale the moment it is read) but
   // atomic, so it is no data race; it carries no site, so no policy, checker or chaos backend sees it.
   template <class A>

@@ -46,7 +46,7 @@ struct BrokenShareLowerBound : Fenced {
 // The owner raises ListTransient (O1) and never lowers it (drops O4). Every item still runs exactly once, and
 // nothing is lost; but the first thief of this owner waits at T4 forever, holding the victim's LockList and
 // counted as active, so the frame never ends. Not an audit's negative control: the watchdog's
-// (core/watchdog.hpp). Tests that use it force the steal (tests/core/stealing_scheduler_test.cpp).
+// (stress/watchdog.hpp). Tests that use it force the steal (tests/core/stealing_scheduler_test.cpp).
 struct BrokenNeverRetracts : Fenced {
   static constexpr std::string_view kName = "Broken:NeverRetracts";
   static constexpr Defect defects() noexcept { return Defect::kOwnerNeverRetracts; }

@@ -28,6 +28,7 @@
 //               supports it (registration is checked at start, see membarrier.hpp); the owner pays nothing.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string_view>
 
@@ -43,29 +44,62 @@ constexpr std::string_view name(Contract c) noexcept {
 }
 
 // Deliberate protocol defects. Only negative controls (negative_controls.hpp) set these, so tests and
-// checkers can prove they are able to fail.
-enum class Defect : std::uint8_t {
+// checkers can prove they are able to fail. One bit each, 32 bits wide so the next negative control has room;
+// every defect is declared once in kDefectTable with the primitive (Protocol, site.hpp) it breaks.
+enum class Defect : std::uint32_t {
   kNone = 0,
-  kSkipFrontReread = 1 << 0,      // thief keeps its whole share without re-reading Front (drops T4, T5)
-  kOwnerSkipsTransient = 1 << 1,  // owner claims without raising ListTransient (drops O1, O4)
-  // Greedy rendering's publication (component_publication.hpp):
-  kReuseWithoutGrace = 1 << 2,    // the frame driver reuses a retired slot without waiting for the pusher
-  kPublishEachSurface = 1 << 3,   // every surface swaps its component in (no per-component count: torn)
-  // Termination (active_workers.hpp):
-  kThiefJoinsLate = 1 << 4,       // thief joins the active count after lowering End (A1 after T3)
-  // The Chase–Lev deque (chase_lev_deque.hpp):
-  kTakeLastWithoutCas = 1 << 5,   // the owner keeps the last element without racing thieves for it (no K6)
-  // The steal's share copy (stealing_protocol.hpp, plan_share):
-  kShareLowerBound = 1 << 6,      // every copied entry starts at mid, not at max(mid, entry start)
-  // Progress (a hang, caught by core/watchdog.hpp):
-  kOwnerNeverRetracts = 1 << 7,   // owner raises ListTransient (O1) but never lowers it (drops O4)
+  kSkipFrontReread = 1u << 0,      // thief keeps its whole share without re-reading Front (drops T4, T5)
+  kOwnerSkipsTransient = 1u << 1,  // owner claims without raising ListTransient (drops O1, O4)
+  kReuseWithoutGrace = 1u << 2,    // the frame driver reuses a retired slot without waiting for the pusher
+  kPublishEachSurface = 1u << 3,   // every surface swaps its component in (no per-component count: torn)
+  kThiefJoinsLate = 1u << 4,       // thief joins the active count after lowering End (A1 after T3)
+  kTakeLastWithoutCas = 1u << 5,   // the owner keeps the last element without racing thieves for it (no K6)
+  kShareLowerBound = 1u << 6,      // every copied entry starts at mid, not at max(mid, entry start)
+  kOwnerNeverRetracts = 1u << 7,   // owner raises ListTransient (O1) but never lowers it: a hang, for watchdogs
 };
 
+struct DefectInfo {
+  Defect defect;
+  std::string_view name;  // as reports and checkers print it
+  Protocol protocol;      // the primitive whose sites it breaks
+};
+
+inline constexpr std::array<DefectInfo, 8> kDefectTable{{
+    {Defect::kSkipFrontReread, "skip_front_reread", Protocol::kStealing},
+    {Defect::kOwnerSkipsTransient, "owner_skips_transient", Protocol::kStealing},
+    {Defect::kReuseWithoutGrace, "reuse_without_grace", Protocol::kPublication},
+    {Defect::kPublishEachSurface, "publish_each_surface", Protocol::kPublication},
+    {Defect::kThiefJoinsLate, "thief_joins_late", Protocol::kStealing},
+    {Defect::kTakeLastWithoutCas, "take_last_without_cas", Protocol::kChaseLev},
+    {Defect::kShareLowerBound, "share_lower_bound", Protocol::kStealing},
+    {Defect::kOwnerNeverRetracts, "owner_never_retracts", Protocol::kStealing},
+}};
+
 constexpr Defect operator|(Defect a, Defect b) noexcept {
-  return static_cast<Defect>(static_cast<std::uint8_t>(a) | static_cast<std::uint8_t>(b));
+  return static_cast<Defect>(static_cast<std::uint32_t>(a) | static_cast<std::uint32_t>(b));
 }
 constexpr bool has(Defect set, Defect d) noexcept {
-  return (static_cast<std::uint8_t>(set) & static_cast<std::uint8_t>(d)) != 0;
+  return (static_cast<std::uint32_t>(set) & static_cast<std::uint32_t>(d)) != 0;
+}
+
+// The rows of kDefectTable are single, distinct bits: two defects sharing a bit would plant both at once.
+constexpr bool defect_table_is_one_bit_each() {
+  std::uint32_t seen = 0;
+  for (const DefectInfo& d : kDefectTable) {
+    const auto bit = static_cast<std::uint32_t>(d.defect);
+    if (bit == 0 || (bit & (bit - 1)) != 0 || (seen & bit) != 0) return false;
+    seen |= bit;
+  }
+  return true;
+}
+static_assert(defect_table_is_one_bit_each(), "every Defect is one bit of its own");
+
+// The primitive a (single) defect breaks; kStealing for kNone.
+constexpr Protocol protocol_of(Defect d) noexcept {
+  for (const DefectInfo& row : kDefectTable) {
+    if (row.defect == d) return row.protocol;
+  }
+  return Protocol::kStealing;
 }
 
 // The order an access of a given kind gets under plain acquire/release labelling: loads acquire, stores

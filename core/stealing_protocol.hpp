@@ -67,7 +67,7 @@
 //   while the victim is preempted between O1 and O4 (paper §4.2.2: "p_i is prone to starvation"). Other
 //   thieves of the same victim wait behind it only in the sense that their try_lock fails and they move on.
 //   A ListTransient that is never lowered would keep a thief at T4 forever, holding the victim's LockList:
-//   every real-thread test and stress run is watched for exactly that kind of hang (core/watchdog.hpp; its
+//   every real-thread test and stress run is watched for exactly that kind of hang (stress/watchdog.hpp; its
 //   negative control is Broken:NeverRetracts).
 //
 // CHECKED BY

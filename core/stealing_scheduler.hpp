@@ -99,7 +99,7 @@ class StealingScheduler {
   WorkerId worker_count() const noexcept { return core_.worker_count(); }
   ItemId item_count() const noexcept { return core_.item_count(); }
   std::uint32_t frames_run() const noexcept { return frame_; }
-  // Diagnostics from any thread, e.g. a watchdog's (core/watchdog.hpp): see StealingWorkers::debug_state.
+  // Diagnostics from any thread, e.g. a watchdog's (stress/watchdog.hpp): see StealingWorkers::debug_state.
   WorkersSnapshot debug_state() const { return core_.debug_state(); }
 
  private:

@@ -1,7 +1,7 @@
 // workers_snapshot.hpp — a plain copy of every worker's thief-visible state, for diagnostics only.
 //
 // StealingWorkers::debug_state() fills it with relaxed atomic reads (Access::peek) from a thread outside the
-// protocol — the watchdog's (core/watchdog.hpp). The copy is racy by design: each field is some value its
+// protocol — the watchdog's (stress/watchdog.hpp). The copy is racy by design: each field is some value its
 // variable held recently, and the fields are not one consistent cut (a claim or a steal may land between two
 // reads). That is enough to tell a hang from progress and to say where each worker stands; it is never used
 // to decide anything in the protocol. Every read is atomic, so ThreadSanitizer reports nothing.

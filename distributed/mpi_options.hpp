@@ -13,7 +13,7 @@
 namespace frontsteal::mpi {
 
 inline constexpr std::string_view kProgram = "frontsteal-mpi";
-inline constexpr int kWatchdogExitCode = 86;  // as core/watchdog.hpp: distinct from a failed audit (1) and usage (2)
+inline constexpr int kWatchdogExitCode = 86;  // as stress/watchdog.hpp: distinct from a failed audit (1) and usage (2)
 
 struct Options {
   std::string scene = "synthetic:20000";

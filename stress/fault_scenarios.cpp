@@ -12,7 +12,7 @@
 #include "core/policies.hpp"
 #include "core/stealing_scheduler.hpp"
 #include "core/synthetic_work.hpp"
-#include "core/watchdog.hpp"
+#include "stress/watchdog.hpp"
 #include "stress/chaos_backend.hpp"
 
 namespace frontsteal::stress {

@@ -1,6 +1,6 @@
 // fault_scenarios.hpp — frontsteal-stress's fault injection: the stealing scheduler (Fenced, chaos backend) with a
 // worker that stalls holding most of the work, an item function that throws, and the edge sizes (P = 1, P > N,
-// N = 0). Each must keep every item exactly once; a frame that stops moving ends the run (core/watchdog.hpp).
+// N = 0). Each must keep every item exactly once; a frame that stops moving ends the run (stress/watchdog.hpp).
 #pragma once
 
 #include <string>

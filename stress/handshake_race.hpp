@@ -19,7 +19,7 @@
 
 #include "core/frame_loop.hpp"
 #include "core/std_backend.hpp"
-#include "core/watchdog.hpp"
+#include "stress/watchdog.hpp"
 
 namespace frontsteal::stress {
 

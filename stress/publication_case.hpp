@@ -25,7 +25,7 @@
 #include "core/component_publication.hpp"
 #include "core/policies.hpp"
 #include "core/stealing_scheduler.hpp"
-#include "core/watchdog.hpp"
+#include "stress/watchdog.hpp"
 #include "stress/chaos_backend.hpp"
 
 namespace frontsteal::stress::publication_stress {
@@ -141,7 +141,7 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
 
   {
     StealingScheduler<Fenced, ChaosBackend> scheduler({.workers = threads, .items = surfaces, .seed = o.seed});
-    // A frame that stops moving ends the run with every worker's state (core/watchdog.hpp), not a ctest timeout.
+    // A frame that stops moving ends the run with every worker's state (stress/watchdog.hpp), not a ctest timeout.
     const Watchdog dog = watch_workers(scheduler, "frontsteal-stress-publication: " + r.policy + ", P=" +
                                                       std::to_string(threads) + ", slots=" + std::to_string(slots));
     const auto start = std::chrono::steady_clock::now();

@@ -6,7 +6,7 @@
 // --scenarios`, under ThreadSanitizer and chaos). The thread roles mirror ProtocolSuite: each worker runs
 // its frames; with `with_caller`, one more thread releases the frames, waits for them and reads every
 // worker's statistics, as StealingScheduler does.
-// Every run is watched (core/watchdog.hpp): a scenario whose frame stops moving ends the process with each
+// Every run is watched (stress/watchdog.hpp): a scenario whose frame stops moving ends the process with each
 // worker's state, naming the scenario and the policy, instead of hanging the test or the stress tier.
 #pragma once
 
@@ -19,7 +19,7 @@
 
 #include "core/execution_counter.hpp"
 #include "core/frame_loop.hpp"
-#include "core/watchdog.hpp"
+#include "stress/watchdog.hpp"
 #include "models_check/scenarios.hpp"
 
 namespace frontsteal::stress {

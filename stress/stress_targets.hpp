@@ -17,7 +17,7 @@
 #include "core/policies.hpp"
 #include "core/stealing_scheduler.hpp"
 #include "core/synthetic_work.hpp"
-#include "core/watchdog.hpp"
+#include "stress/watchdog.hpp"
 #include "models_check/table_policy.hpp"
 #include "stress/chaos_backend.hpp"
 #include "schedulers/registry.hpp"
@@ -36,7 +36,7 @@ class StressTarget {
   virtual void reseed(const std::vector<RangeList>& lists) = 0;
 };
 
-// The stealing scheduler under a watchdog (core/watchdog.hpp): a case whose frame stops moving ends the run
+// The stealing scheduler under a watchdog (stress/watchdog.hpp): a case whose frame stops moving ends the run
 // with every worker's state instead of hanging the stress tier until ctest's timeout.
 template <class Policy, class Backend>
 class StealingTarget final : public StressTarget {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/thread_pinning.hpp"
+#include "measure/thread_pinning.hpp"
 #include "schedulers/llvm_openmp/child_options.hpp"
 #include "tessellate/frame_workload.hpp"
 #include "tessellate/path_scene.hpp"

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "core/execution_counter.hpp"
-#include "core/thread_pinning.hpp"
+#include "measure/thread_pinning.hpp"
 #include "measure/interference.hpp"
 #include "measure/noise_monitor.hpp"
 #include "measure/pass_usage.hpp"

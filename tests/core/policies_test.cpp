@@ -49,3 +49,28 @@ TEST_CASE("the static store-buffering reading rejects half-fenced policies", "[c
   // in its store buffer while it loads End.
   STATIC_REQUIRE_FALSE(fs::forbids_store_buffering<LightOnly>());
 }
+
+TEST_CASE("every planted defect is one bit of its own and names the primitive it breaks", "[core][policy]") {
+  std::uint32_t all = 0;
+  for (const fs::DefectInfo& row : fs::kDefectTable) {
+    const auto bit = static_cast<std::uint32_t>(row.defect);
+    CHECK((all & bit) == 0);
+    all |= bit;
+    CHECK(fs::has(row.defect, row.defect));
+    CHECK_FALSE(fs::has(fs::Defect::kNone, row.defect));
+  }
+  // Room for the next negative control: the type is wider than the bits in use.
+  CHECK(all < (std::uint32_t{1} << 31));
+  // The stealing protocol's negative controls plant stealing defects; the others belong to their primitives.
+  CHECK(fs::protocol_of(fs::BrokenSkipsReread::defects()) == fs::Protocol::kStealing);
+  CHECK(fs::protocol_of(fs::BrokenNoTransient::defects()) == fs::Protocol::kStealing);
+  CHECK(fs::protocol_of(fs::BrokenJoinsLate::defects()) == fs::Protocol::kStealing);
+  CHECK(fs::protocol_of(fs::BrokenShareLowerBound::defects()) == fs::Protocol::kStealing);
+  CHECK(fs::protocol_of(fs::BrokenNeverRetracts::defects()) == fs::Protocol::kStealing);
+  CHECK(fs::protocol_of(fs::Defect::kReuseWithoutGrace) == fs::Protocol::kPublication);
+  CHECK(fs::protocol_of(fs::Defect::kPublishEachSurface) == fs::Protocol::kPublication);
+  CHECK(fs::protocol_of(fs::Defect::kTakeLastWithoutCas) == fs::Protocol::kChaseLev);
+  const fs::Defect two = fs::Defect::kSkipFrontReread | fs::Defect::kOwnerNeverRetracts;
+  CHECK(fs::has(two, fs::Defect::kOwnerNeverRetracts));
+  CHECK_FALSE(fs::has(two, fs::Defect::kThiefJoinsLate));
+}

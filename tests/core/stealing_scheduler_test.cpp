@@ -15,7 +15,7 @@
 #include "core/negative_controls.hpp"
 #include "core/policies.hpp"
 #include "core/synthetic_work.hpp"
-#include "core/watchdog.hpp"
+#include "stress/watchdog.hpp"
 
 namespace fs = frontsteal;
 using fs::ItemId;
@@ -37,7 +37,7 @@ bool policy_usable() {
   return true;
 }
 
-// Every real-thread test here runs under a watchdog (core/watchdog.hpp): a frame that stops moving fails the
+// Every real-thread test here runs under a watchdog (stress/watchdog.hpp): a frame that stops moving fails the
 // test binary within seconds, naming the test and printing each worker's state, instead of waiting for ctest's
 // timeout. A stall (no claim, steal or frame boundary) is what counts, not total time, so slow runs are fine.
 template <class Scheduler>
@@ -284,7 +284,7 @@ TEST_CASE("a forced steal completes under a sound policy (the control of the pla
 }
 
 // The watchdog's negative control, hidden from the normal run ("[.]"): it must end the process with
-// kWatchdogExitCode and a report. tests/CMakeLists.txt runs it as core.watchdog_catches_planted_hang and checks
+// kWatchdogExitCode and a report. tests/CMakeLists.txt runs it as watchdog.catches_planted_hang and checks
 // the exit code, the report's lines and the time it took.
 TEST_CASE("planted hang: the owner never retracts ListTransient and the watchdog ends the frame", "[.][watchdog-control]") {
   fs::WatchdogOptions options;

@@ -1,6 +1,6 @@
-// core/watchdog.hpp: what must NOT fire. Firing itself (exit code 86 and the per-worker report) is checked by
-// the ctest core.watchdog_catches_planted_hang, in a child process, since it ends the process.
-#include "core/watchdog.hpp"
+// stress/watchdog.hpp: what must NOT fire. Firing itself (exit code 86 and the per-worker report) is checked by
+// the ctest watchdog.catches_planted_hang, in a child process, since it ends the process.
+#include "stress/watchdog.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -20,7 +20,7 @@ void survive(double seconds, Busy busy, Progress progress) {
   fs::WatchdogOptions options;
   options.stall_seconds = 0.2;
   const fs::Watchdog dog(
-      "core_watchdog_test", [&] { return fs::WatchdogSample{busy(), progress()}; },
+      "stress_watchdog_test", [&] { return fs::WatchdogSample{busy(), progress()}; },
       [](std::FILE* out) { std::fprintf(out, "  (test probe)\n"); }, options);
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
 }
@@ -50,7 +50,7 @@ TEST_CASE("a watchdog never fires while busy work keeps progressing", "[core][wa
 TEST_CASE("watchdogs come and go cheaply: one service thread, not one thread each", "[core][watchdog]") {
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < 10000; ++i) {
-    const fs::Watchdog dog("core_watchdog_test", [] { return fs::WatchdogSample{true, 0}; }, {});
+    const fs::Watchdog dog("stress_watchdog_test", [] { return fs::WatchdogSample{true, 0}; }, {});
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   INFO(seconds << " s for 10000 registrations");
