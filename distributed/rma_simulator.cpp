@@ -1,21 +1,22 @@
-// rma_simulator.cpp — the discrete-event model of rma_simulator.hpp. SIMULATED numbers only.
+// rma_simulator.cpp — the discrete-event model of rma_simulator.hpp. SIMULATED numbers only. The event queue,
+// the exactly-once audit, the first lists, the victim orders and the split are the simulation core's
+// (papers/simulation/), shared with the shared-memory models (papers/simulator.cpp).
 #include "distributed/rma_simulator.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
 #include <random>
-#include <stdexcept>
-#include <tuple>
 
 #include "distributed/synthetic_cost.hpp"
+#include "papers/simulation/event_queue.hpp"
+#include "papers/simulation/exactly_once_audit.hpp"
+#include "papers/simulation/stealing_lists.hpp"
 
 namespace frontsteal::mpi::sim {
 namespace {
 
 constexpr double kYieldNs = 1000;          // an idle loop's sched_yield on a loaded core (assumed)
 constexpr double kInstallRetryNs = 500;    // a thief's install waits for its own LockList (held by a thief)
-constexpr std::uint64_t kEventLimit = 2'000'000'000ull;
 
 enum class Step : std::uint8_t { kOwner, kRoundStart, kTryVictim, kT1, kT2, kT3, kT4, kInstall, kAwaitReply, kDone };
 
@@ -35,17 +36,13 @@ struct Rank {
 class Model {
  public:
   Model(Scheduler s, int p, const Workload& w, const Latencies& lat, std::uint64_t seed, Defect d)
-      : s_(s), p_(p), w_(w), lat_(lat), defect_(d), ranks_(static_cast<std::size_t>(p)) {
+      : s_(s), p_(p), w_(w), lat_(lat), defect_(d), ranks_(static_cast<std::size_t>(p)), audit_(w.items) {
+    std::vector<std::vector<ItemId>> blocks = simulation::contiguous_blocks(w.items, static_cast<std::uint32_t>(p));
     for (int r = 0; r < p; ++r) {
       Rank& k = ranks_[static_cast<std::size_t>(r)];
-      for (int v = 0; v < p; ++v) {
-        if (v != r) k.victims.push_back(v);
-      }
       std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(r));
-      std::shuffle(k.victims.begin(), k.victims.end(), rng);
-      const auto b = static_cast<ItemId>(std::uint64_t{w.items} * r / p);
-      const auto e = static_cast<ItemId>(std::uint64_t{w.items} * (r + 1) / p);
-      for (ItemId id = b; id < e; ++id) k.list.push_back(id);
+      k.victims = simulation::victim_order(r, p, rng);
+      k.list = std::move(blocks[static_cast<std::size_t>(r)]);
     }
   }
 
@@ -97,7 +94,7 @@ class Model {
     }
     return start + latency / 2;
   }
-  void at_time(double t, int r) { events_.emplace(t, seq_++, r); }
+  void at_time(double t, int r) { events_.push(t, r); }
 
   double static_frame() {
     double worst = 0;
@@ -116,6 +113,7 @@ class Model {
   double event_frame() {
     active_ = p_;
     next_item_ = 0;
+    events_ = Events(simulation::Ties::kInArrivalOrder);  // the event limit counts one frame
     for (int r = 0; r < p_; ++r) {
       Rank& k = at(r);
       if (s_ == Scheduler::kRma || s_ == Scheduler::kRequest) {
@@ -131,11 +129,8 @@ class Model {
       k.step = Step::kOwner;
       at_time(0, r);
     }
-    std::uint64_t n = 0;
     while (!events_.empty()) {
-      const auto [t, seq, r] = events_.top();
-      events_.pop();
-      if (++n > kEventLimit) throw std::runtime_error("simulator: event limit reached (a livelock in the model)");
+      const auto [t, r] = events_.pop();
       s_ == Scheduler::kCentral ? central_step(t, r) : stealing_step(t, r);
     }
     double worst = 0;
@@ -250,9 +245,7 @@ class Model {
           k.step = Step::kTryVictim;
           return at_time(c, r);
         }
-        k.mid = defect_ == Defect::kEmptyShare
-                    ? end
-                    : k.front_read + static_cast<std::uint32_t>(items_left_to_victim(end - k.front_read));
+        k.mid = defect_ == Defect::kEmptyShare ? end : simulation::steal_mid(k.front_read, end);
         k.old_end = end;
         double c = op(t, current(k), lat_.get, false);  // the entry count
         c = op(c, current(k), lat_.get, false);          // the entries
@@ -355,16 +348,11 @@ class Model {
   }
 
   void audit(Result& res) {
-    std::vector<std::uint32_t> counts(w_.items, 0);
-    for (Rank& k : ranks_) {
-      for (ItemId id : k.executed) ++counts[id];
-    }
-    for (ItemId id = 0; id < w_.items; ++id) {
-      if (counts[id] != 1 && res.exactly_once) {
-        res.exactly_once = false;
-        res.audit_failure = "frame " + std::to_string(frame_) + ": item " + std::to_string(id) + " executed " +
-                            std::to_string(counts[id]) + " times";
-      }
+    audit_.clear();
+    for (const Rank& k : ranks_) audit_.count(k.executed);
+    if (const auto failure = audit_.first_failure(); failure && res.exactly_once) {
+      res.exactly_once = false;
+      res.audit_failure = "frame " + std::to_string(frame_) + ": " + failure->what();
     }
   }
 
@@ -376,10 +364,11 @@ class Model {
   std::vector<Rank> ranks_;
   int frame_ = 0;
   std::int64_t active_ = 0;
-  std::uint64_t next_item_ = 0, seq_ = 0, steals_ = 0, attempts_ = 0, remote_ops_ = 0;
+  std::uint64_t next_item_ = 0, steals_ = 0, attempts_ = 0, remote_ops_ = 0;
   double steal_ns_ = 0;
-  std::priority_queue<std::tuple<double, std::uint64_t, int>, std::vector<std::tuple<double, std::uint64_t, int>>,
-                      std::greater<>> events_;
+  using Events = simulation::EventQueue<int>;
+  Events events_{simulation::Ties::kInArrivalOrder};
+  simulation::ExactlyOnceAudit audit_;
 };
 
 }  // namespace

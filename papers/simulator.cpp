@@ -1,26 +1,28 @@
 // simulator.cpp — the discrete-event models of simulator.hpp.
 //
-// Each model is a loop over events (time, worker) in time order; an event is the instant a worker does its next
-// shared-memory step (claim an item, ask for the lock, try a victim). Between events a worker only runs items,
-// so shared state changes only at event instants and the models need no finer clock.
+// Each model is a loop over events (time, worker) in time order (papers/simulation/event_queue.hpp); an event
+// is the instant a worker does its next shared-memory step (claim an item, ask for the lock, try a victim).
+// Between events a worker only runs items, so shared state changes only at event instants and the models need
+// no finer clock. The audit, the stealing lists and the split are the simulation core's, shared with the MPI
+// model (distributed/rma_simulator.cpp).
 #include "papers/simulator.hpp"
 
 #include <algorithm>
-#include <functional>
 #include <numeric>
-#include <queue>
 #include <random>
 #include <stdexcept>
+
+#include "papers/simulation/event_queue.hpp"
+#include "papers/simulation/exactly_once_audit.hpp"
+#include "papers/simulation/stealing_lists.hpp"
 
 namespace frontsteal::papers {
 namespace {
 
-struct Event {
-  double at;
-  WorkerId worker;
-  bool operator>(const Event& o) const { return at > o.at || (at == o.at && worker > o.worker); }
+// Workers woken together start in id order (notify_all), so ties go to the lower worker.
+struct EventQueue : simulation::EventQueue<WorkerId> {
+  EventQueue() : simulation::EventQueue<WorkerId>(simulation::Ties::kByWorker) {}
 };
-using EventQueue = std::priority_queue<Event, std::vector<Event>, std::greater<Event>>;
 
 // What an item costs on a worker: its traced cost, the affinity penalty when another worker ran it in the
 // previous frame, times the worker's slowdown. One per frame; `previous` is updated between frames.
@@ -73,14 +75,13 @@ FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, S
   out.busy_ns.assign(p, 0);
   out.ran.assign(p, {});
   EventQueue events;
-  for (WorkerId w = 0; w < p; ++w) events.push({w * o.wake_skew_ns, w});
+  for (WorkerId w = 0; w < p; ++w) events.push(w * o.wake_skew_ns, w);
   ItemId cursor = 0;
   double free_at = 0;
   WorkerId last_holder = p;  // none yet
   std::vector<char> woken(p, 0);  // [w]: w slept on the lock since its last claim
   while (!events.empty()) {
-    const Event e = events.top();
-    events.pop();
+    const auto e = events.pop();
     if (cursor >= n) {  // the worker takes the lock once more, finds the queue empty and leaves
       out.last_finish_ns = std::max(out.last_finish_ns, e.at);
       continue;
@@ -91,7 +92,7 @@ FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, S
       // running worker take it first (barging), so a slow wake-up delays the sleeper, not the queue.
       ++totals.lock_waits;
       woken[e.worker] = 1;
-      events.push({free_at + o.lock_wake_ns, e.worker});
+      events.push(free_at + o.lock_wake_ns, e.worker);
       continue;
     }
     const double granted = e.at;
@@ -111,7 +112,7 @@ FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, S
       out.ran[e.worker].push_back(id);
       t += c + o.queue.item_ns;
     }
-    events.push({t, e.worker});
+    events.push(t, e.worker);
   }
   return out;
 }
@@ -154,10 +155,9 @@ FrameOutcome run_stealing(const ItemCharge& cost, StealingState& state, const Ov
   out.busy_ns.assign(p, 0);
   out.ran.assign(p, {});
   EventQueue events;
-  for (WorkerId w = 0; w < p; ++w) events.push({w * o.wake_skew_ns, w});
+  for (WorkerId w = 0; w < p; ++w) events.push(w * o.wake_skew_ns, w);
   while (!events.empty()) {
-    const Event e = events.top();
-    events.pop();
+    const auto e = events.pop();
     Worker& me = ws[e.worker];
     if (!me.share.empty()) {  // the steal is over: install the share, as the protocol does after unlocking
       me.list.swap(me.share);
@@ -171,7 +171,7 @@ FrameOutcome run_stealing(const ItemCharge& cost, StealingState& state, const Ov
       const double c = cost(id, e.worker);
       out.busy_ns[e.worker] += c;
       out.ran[e.worker].push_back(id);
-      events.push({e.at + c + o.stealing.item_ns, e.worker});
+      events.push(e.at + c + o.stealing.item_ns, e.worker);
       continue;
     }
     if (unclaimed <= 0 || p == 1) {  // every list is empty: the worker is done
@@ -182,16 +182,16 @@ FrameOutcome run_stealing(const ItemCharge& cost, StealingState& state, const Ov
     Worker& victim = ws[order[me.next_victim++ % order.size()]];
     if (victim.lock_free_at > e.at || victim.front >= victim.end) {
       const double cost = victim.lock_free_at > e.at ? o.steal_busy_ns() : o.steal_empty_ns();
-      events.push({e.at + failed_attempt(cost, me.failures_in_round, p, o, totals), e.worker});
+      events.push(e.at + failed_attempt(cost, me.failures_in_round, p, o, totals), e.worker);
     } else {  // steal the second half; End is lowered at once, the share is ours when the steal's time is over
-      const std::size_t mid = victim.front + (victim.end - victim.front) / 2;
+      const std::size_t mid = simulation::steal_mid(victim.front, victim.end);
       me.share.assign(victim.list.begin() + static_cast<std::ptrdiff_t>(mid),
                       victim.list.begin() + static_cast<std::ptrdiff_t>(victim.end));
       if (!plant_lost_steal) victim.end = mid;
       victim.lock_free_at = e.at + o.steal_ns();
       me.failures_in_round = 0;
       ++totals.steals;
-      events.push({e.at + o.steal_ns(), e.worker});
+      events.push(e.at + o.steal_ns(), e.worker);
     }
   }
   return out;
@@ -219,11 +219,10 @@ FrameOutcome run_chase_lev(const ItemCharge& cost, WorkerId p, const Overheads& 
   out.busy_ns.assign(p, 0);
   out.ran.assign(p, {});
   EventQueue events;
-  for (WorkerId w = 0; w < p; ++w) events.push({w * o.wake_skew_ns, w});
+  for (WorkerId w = 0; w < p; ++w) events.push(w * o.wake_skew_ns, w);
   std::uniform_int_distribution<WorkerId> other(0, p > 1 ? p - 2 : 0);
   while (!events.empty()) {
-    const Event e = events.top();
-    events.pop();
+    const auto e = events.pop();
     Worker& me = ws[e.worker];
     if (!me.stolen.empty()) {
       me.deque.push_back(me.stolen);
@@ -235,7 +234,7 @@ FrameOutcome run_chase_lev(const ItemCharge& cost, WorkerId p, const Overheads& 
       const double c = cost(id, e.worker);
       out.busy_ns[e.worker] += c;
       out.ran[e.worker].push_back(id);
-      events.push({e.at + c + o.chase_lev.item_ns, e.worker});
+      events.push(e.at + c + o.chase_lev.item_ns, e.worker);
       continue;
     }
     if (me.top < me.deque.size()) {  // take the newest range, split off upper halves down to one item
@@ -247,7 +246,7 @@ FrameOutcome run_chase_lev(const ItemCharge& cost, WorkerId p, const Overheads& 
         r.end = mid;
       }
       me.running = r;
-      events.push({e.at, e.worker});
+      events.push(e.at, e.worker);
       continue;
     }
     me.deque.clear();
@@ -261,13 +260,13 @@ FrameOutcome run_chase_lev(const ItemCharge& cost, WorkerId p, const Overheads& 
     Worker& victim = ws[v];
     if (victim.top >= victim.deque.size() || victim.top_busy_until > e.at) {
       const double cost = victim.top >= victim.deque.size() ? o.steal_empty_ns() : o.steal_busy_ns();
-      events.push({e.at + failed_attempt(cost, me.failures_in_round, p, o, totals), e.worker});
+      events.push(e.at + failed_attempt(cost, me.failures_in_round, p, o, totals), e.worker);
     } else {
       me.stolen = victim.deque[victim.top++];
       victim.top_busy_until = e.at + o.steal_chase_lev_ns();
       me.failures_in_round = 0;
       ++totals.steals;
-      events.push({e.at + o.steal_chase_lev_ns(), e.worker});
+      events.push(e.at + o.steal_chase_lev_ns(), e.worker);
     }
   }
   return out;
@@ -290,23 +289,12 @@ SimulatedRun simulate(const CostTrace& trace, const Overheads& o, const Simulati
   StealingState stealing;
   if (opt.model == Model::stealing) {
     std::mt19937_64 rng(opt.seed);
-    for (WorkerId w = 0; w < p; ++w) {  // contiguous blocks, as core/frame_loop.hpp's block_allocation
-      std::vector<ItemId> list;
-      for (auto id = static_cast<ItemId>(std::uint64_t{n} * w / p); id < std::uint64_t{n} * (w + 1) / p; ++id) {
-        list.push_back(id);
-      }
-      stealing.lists.push_back(std::move(list));
-      std::vector<WorkerId> order;
-      for (WorkerId v = 0; v < p; ++v) {
-        if (v != w) order.push_back(v);
-      }
-      std::shuffle(order.begin(), order.end(), rng);
-      stealing.victim_orders.push_back(std::move(order));
-    }
+    stealing.lists = simulation::contiguous_blocks(n, p);
+    for (WorkerId w = 0; w < p; ++w) stealing.victim_orders.push_back(simulation::victim_order(w, p, rng));
   }
   std::mt19937_64 chase_rng(opt.seed);
   double busy_total = 0, available = 0, imbalance_sum = 0;
-  std::vector<int> runs(n);
+  simulation::ExactlyOnceAudit audit(n);
   std::vector<WorkerId> previous(n, ItemCharge::kNoWorker);
   const double penalty = opt.plant_ignore_affinity ? 0.0 : o.affinity_penalty;
   for (std::size_t f = 0; f < trace.frames(); ++f) {
@@ -330,27 +318,13 @@ SimulatedRun simulate(const CostTrace& trace, const Overheads& o, const Simulati
     available += frame * p;
     const double mean = busy / p;
     imbalance_sum += mean > 0 ? *std::max_element(fo.busy_ns.begin(), fo.busy_ns.end()) / mean : 1.0;
-    // Audit: every item exactly once.
-    std::fill(runs.begin(), runs.end(), 0);
-    for (const auto& list : fo.ran) {
-      for (ItemId id : list) ++runs[id];
-    }
-    if (std::any_of(runs.begin(), runs.end(), [](int c) { return c != 1; })) ++run.audit_failures;
+    audit.clear();
+    for (const auto& list : fo.ran) audit.count(list);
+    if (audit.first_failure()) ++run.audit_failures;
     for (WorkerId w = 0; w < p; ++w) {
       for (ItemId id : fo.ran[w]) previous[id] = w;
     }
-    if (opt.model == Model::stealing) {  // next lists: what each worker ran, in id order (duplicates to the first)
-      std::vector<char> taken(n, 0);
-      for (WorkerId w = 0; w < p; ++w) {
-        std::vector<ItemId> next;
-        for (ItemId id : fo.ran[w]) {
-          if (!taken[id]) next.push_back(id);
-          taken[id] = 1;
-        }
-        std::sort(next.begin(), next.end());
-        stealing.lists[w] = std::move(next);
-      }
-    }
+    if (opt.model == Model::stealing) stealing.lists = simulation::lists_from_runs(fo.ran, n);
   }
   run.frames_per_s = run.path_ns > 0 ? 1e9 * static_cast<double>(trace.frames()) / run.path_ns : 0;
   run.utilization_pct = available > 0 ? 100.0 * busy_total / available : 0;
