@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "distributed/calibration_operations.hpp"
 #include "distributed/rank_watchdog.hpp"
 #include "distributed/rma_stealing.hpp"
 #include "measure/paired_comparison.hpp"
@@ -14,6 +15,8 @@
 namespace frontsteal::mpi {
 namespace {
 
+namespace ops = calibration_ops;
+
 using Clock = std::chrono::steady_clock;
 constexpr int kReps = 20000;
 constexpr int kTagCalibrationDone = 184;
@@ -22,12 +25,12 @@ constexpr std::size_t kBootstrapSampleCap = 500;  // an evenly strided subsample
 
 // Times `op` kReps times or for at most op_s seconds; the watchdog names the operation if one never returns.
 template <class Op>
-CalibrationRow time_op(const char* what, double op_s, Op&& op) {
-  set_phase(what);
+CalibrationRow time_op(std::string_view what, double op_s, Op&& op) {
+  set_phase(what.data());  // a calibration_ops name: a NUL-terminated literal
   std::vector<double> ns;
   ns.reserve(kReps);
   const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(op_s));
-  CalibrationRow row{what};
+  CalibrationRow row{std::string(what)};
   for (int i = 0; i < kReps; ++i) {
     const auto t0 = Clock::now();
     op();
@@ -52,32 +55,32 @@ CalibrationRow time_op(const char* what, double op_s, Op&& op) {
 std::vector<CalibrationRow> measure_from_rank0(const Options& o, RmaWindow& win) {
   std::vector<CalibrationRow> rows;
   const double s = o.calibrate_op_s;
-  rows.push_back(time_op("MPI_Get 4 B + MPI_Win_flush (remote)", s, [&] { (void)win.get(1, kFront); }));
-  rows.push_back(time_op("MPI_Put 4 B + MPI_Win_flush (remote)", s, [&] { win.put(1, kEntryCount, 0u); }));
-  rows.push_back(time_op("MPI_Compare_and_swap + flush (remote)", s, [&] { (void)win.compare_and_swap(1, kLock, 7u, 7u); }));
-  rows.push_back(time_op("MPI_Fetch_and_op SUM + flush (remote)", s, [&] { (void)win.fetch_and_op(1, kActive, 0, MPI_SUM); }));
-  rows.push_back(time_op("MPI_Win_flush alone (nothing pending)", s, [&] { win.flush(1); }));
-  rows.push_back(time_op("MPI_Win_sync (owner F1)", s, [&] { win.sync(); }));
+  rows.push_back(time_op(ops::kGet, s, [&] { (void)win.get(1, kFront); }));
+  rows.push_back(time_op(ops::kPut, s, [&] { win.put(1, kEntryCount, 0u); }));
+  rows.push_back(time_op(ops::kCompareAndSwap, s, [&] { (void)win.compare_and_swap(1, kLock, 7u, 7u); }));
+  rows.push_back(time_op(ops::kFetchAndOp, s, [&] { (void)win.fetch_and_op(1, kActive, 0, MPI_SUM); }));
+  rows.push_back(time_op(ops::kFlush, s, [&] { win.flush(1); }));
+  rows.push_back(time_op(ops::kWinSync, s, [&] { win.sync(); }));
   RmaActiveCount active(win);
   RmaOwner owner(win, 0);
   const RangeList big{{0, static_cast<ItemId>(std::min<std::uint32_t>(win.capacity(), 1u << 20))}};
   owner.install(big);
-  rows.push_back(time_op("RMA owner claim, F1 = MPI_Win_sync + fence", s, [&] { (void)owner.try_claim(); }));
+  rows.push_back(time_op(ops::kClaimWithSync, s, [&] { (void)owner.try_claim(); }));
   RmaOwner plain_owner(win, 0, false);
   plain_owner.install(big);
-  rows.push_back(time_op("RMA owner claim, F1 = fence only (default)", s, [&] { (void)plain_owner.try_claim(); }));
+  rows.push_back(time_op(ops::kClaim, s, [&] { (void)plain_owner.try_claim(); }));
   OwnerProgress poke(MPI_COMM_WORLD, 0);
-  rows.push_back(time_op("owner progress call (MPI_Iprobe, unused tag)", s, [&] { poke.call(); }));
-  rows.push_back(time_op("request owner poll (MPI_Iprobe, nothing pending)", s, [&] {
+  rows.push_back(time_op(ops::kProgressCall, s, [&] { poke.call(); }));
+  rows.push_back(time_op(ops::kRequestPoll, s, [&] {
     int flag = 0;
     MPI_Iprobe(MPI_ANY_SOURCE, 181, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
   }));
-  rows.push_back(time_op("MPI_Send/MPI_Recv ping-pong 4 B (round trip)", s, [&] {
+  rows.push_back(time_op(ops::kPingPong, s, [&] {
     std::uint32_t word = 0;
     MPI_Send(&word, 1, MPI_UINT32_T, 1, kTagPing, MPI_COMM_WORLD);
     MPI_Recv(&word, 1, MPI_UINT32_T, 1, kTagPing, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
   }));
-  rows.push_back(time_op("clock pair alone (measurement floor)", s, [] {}));
+  rows.push_back(time_op(ops::kClockFloor, s, [] {}));
   return rows;
 }
 

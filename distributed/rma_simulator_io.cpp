@@ -6,17 +6,20 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "distributed/calibration_operations.hpp"
 #include "distributed/rma_simulator.hpp"
 #include "reporting/results_dir.hpp"
 
 namespace frontsteal::mpi::sim {
 namespace {
 
-double operation_ns(const report::Json& doc, const std::string& path, const std::string& prefix) {
+namespace ops = calibration_ops;
+
+double operation_ns(const report::Json& doc, const std::string& path, std::string_view name) {
   for (const report::Json& op : doc.at("operations")) {
-    if (op.at("operation").get<std::string>().rfind(prefix, 0) == 0) return op.at("median_ns").get<double>();
+    if (op.at("operation").get<std::string>() == name) return op.at("median_ns").get<double>();
   }
-  throw std::runtime_error(path + ": no operation starting with '" + prefix + "' (run frontsteal-mpi --calibrate --json)");
+  throw std::runtime_error(path + ": no operation '" + std::string(name) + "' (run frontsteal-mpi --calibrate --json)");
 }
 
 }  // namespace
@@ -42,14 +45,14 @@ Latencies latencies_from_calibration(const std::string& path) {
   }
   if (doc.value("contents", "") != "calibration") throw std::runtime_error(path + ": not a calibration (contents)");
   Latencies l;
-  l.get = operation_ns(doc, path, "MPI_Get 4 B");
-  l.put = operation_ns(doc, path, "MPI_Put 4 B");
-  l.cas = operation_ns(doc, path, "MPI_Compare_and_swap");
-  l.fetch_op = operation_ns(doc, path, "MPI_Fetch_and_op");
-  l.ping_pong = operation_ns(doc, path, "MPI_Send/MPI_Recv ping-pong");
-  l.claim = operation_ns(doc, path, "RMA owner claim, F1 = fence only");
-  l.poll = operation_ns(doc, path, "request owner poll");
-  l.progress_call = operation_ns(doc, path, "owner progress call");
+  l.get = operation_ns(doc, path, ops::kGet);
+  l.put = operation_ns(doc, path, ops::kPut);
+  l.cas = operation_ns(doc, path, ops::kCompareAndSwap);
+  l.fetch_op = operation_ns(doc, path, ops::kFetchAndOp);
+  l.ping_pong = operation_ns(doc, path, ops::kPingPong);
+  l.claim = operation_ns(doc, path, ops::kClaim);
+  l.poll = operation_ns(doc, path, ops::kRequestPoll);
+  l.progress_call = operation_ns(doc, path, ops::kProgressCall);
   l.atomic_service = std::max(l.fetch_op - l.get, 50.0);
   const std::string osc = doc.value("osc_requested", "");
   l.needs_target_progress = !doc.value("one_node", true) || (!osc.empty() && osc.find("sm") == std::string::npos);
