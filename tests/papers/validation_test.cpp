@@ -97,3 +97,35 @@ TEST_CASE("prediction: the trace scaled, the scheduler's model, the slowdown - t
   CHECK(b.lock_wake_ns == 0);
   CHECK(b.wake_skew_ns == 0);
 }
+
+TEST_CASE("interval error: 0 inside the measured interval, else against the nearer bound") {
+  const fp::MeasuredRatio m{1.0, 0.9, 1.2, true};
+  CHECK(fp::interval_error_pct(1.0, m) == 0);
+  CHECK(fp::interval_error_pct(0.9, m) == 0);  // the bounds are inside
+  CHECK(fp::interval_error_pct(1.2, m) == 0);
+  CHECK(fp::interval_error_pct(1.32, m) == Approx(10.0));   // 10 % above the upper bound
+  CHECK(fp::interval_error_pct(0.81, m) == Approx(-10.0));  // 10 % below the lower bound
+}
+
+TEST_CASE("the simulator models four registry schedulers and no others") {
+  CHECK(fp::model_of("round-robin") == fp::Model::static_list);
+  CHECK(fp::model_of("queue-mutex") == fp::Model::queue);
+  CHECK(fp::model_of("stealing/Fenced") == fp::Model::stealing);
+  CHECK(fp::model_of("chase-lev") == fp::Model::chase_lev);
+  CHECK_FALSE(fp::model_of("tbb-affinity").has_value());
+  CHECK_FALSE(fp::model_of("stealing/Paper").has_value());  // another policy is another scheduler
+  CHECK_FALSE(fp::model_of("").has_value());
+}
+
+TEST_CASE("the baseline model drops exactly the terms added for validation") {
+  fp::Overheads o;
+  o.affinity_penalty = 0.3;
+  o.lock_wake_ns = 5000;
+  o.wake_skew_ns = 15000;
+  o.line_transfer_ns = 123;
+  const fp::Overheads base = fp::without_new_terms(o);
+  CHECK(base.affinity_penalty == 0);
+  CHECK(base.lock_wake_ns == 0);
+  CHECK(base.wake_skew_ns == 0);
+  CHECK(base.line_transfer_ns == 123);  // the calibrated costs stay
+}
