@@ -23,6 +23,8 @@ packages=(
   libglu1-mesa-dev
   # the parser's fuzz target (tessellate/fuzz/, `cmake --workflow --preset fuzz`)
   clang-14 libclang-rt-14-dev
+  # the formatting check (.clang-format, ctest format.*) and the static checks (.clang-tidy, ctest tidy.*)
+  clang-format-14 clang-tidy-14
   # the CAD importer frontsteal-import (tessellate/occt_import.cpp): Open CASCADE 7.6 (OCCT's CMake targets
   # also name libtbb.so), and the real STEP/IGES/BREP files its test reads (never committed)
   libocct-data-exchange-dev libocct-modeling-algorithms-dev libtbb-dev

@@ -23,16 +23,16 @@ class ActiveWorkers {
  public:
   explicit ActiveWorkers(std::uint32_t workers) : count_(workers) {}
 
-  void join() noexcept { A::template fetch_add<Site::kActiveJoin>(count_, std::uint32_t{1}); }     // A1
-  void leave() noexcept { A::template fetch_sub<Site::kActiveLeave>(count_, std::uint32_t{1}); }   // A2
+  void join() noexcept { A::template fetch_add<Site::kActiveJoin>(count_, std::uint32_t{1}); }    // A1
+  void leave() noexcept { A::template fetch_sub<Site::kActiveLeave>(count_, std::uint32_t{1}); }  // A2
   [[nodiscard]] bool all_idle() const noexcept {
-    return A::template load<Site::kActivePoll>(count_) == 0u;                                      // A3
+    return A::template load<Site::kActivePoll>(count_) == 0u;  // A3
   }
   // Diagnostics only (StealingWorkers::debug_state): the count as some recent moment saw it.
   [[nodiscard]] std::uint32_t debug_count() const noexcept { return A::peek(count_); }
   // Only the last worker to arrive at a frame boundary calls this, while every other worker waits.
   void rearm(std::uint32_t workers) noexcept {
-    A::template store<Site::kFrameResetActive>(count_, workers);                                   // E4
+    A::template store<Site::kFrameResetActive>(count_, workers);  // E4
   }
 
  private:

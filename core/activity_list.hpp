@@ -60,7 +60,7 @@ struct ActivitySlot {
   Atomic<std::uint32_t> transient{0u};                  // ListTransient[p]: 1 while a claim is in flight
   Atomic<std::uint32_t> end{0u};                        // End of ActivityList[p] (flat position)
 
-  alignas(kCacheLine) TryLock<Backend, Policy> lock;    // LockList[p]
+  alignas(kCacheLine) TryLock<Backend, Policy> lock;  // LockList[p]
 
   alignas(kCacheLine) std::unique_ptr<Cell<SegmentEntry>[]> entries;  // the list body
   Cell<std::uint32_t> entry_count{};

@@ -93,9 +93,9 @@ class ChaseLevDeque {
     const std::int64_t b = A::template load<Site::kPushReadBottom>(bottom_);  // B1
     const std::int64_t t = A::template load<Site::kPushReadTop>(top_);        // B2
     if (b - t > static_cast<std::int64_t>(mask_)) return false;
-    A::template store<Site::kPushWriteSlot>(slot(b), x);                      // B3
-    A::template fence<Site::kPushReleaseFence>();                             // B4
-    A::template store<Site::kPushPublishBottom>(bottom_, b + 1);              // B5
+    A::template store<Site::kPushWriteSlot>(slot(b), x);          // B3
+    A::template fence<Site::kPushReleaseFence>();                 // B4
+    A::template store<Site::kPushPublishBottom>(bottom_, b + 1);  // B5
     return true;
   }
 
@@ -106,25 +106,25 @@ class ChaseLevDeque {
     A::template fence<Site::kTakeFence>();                                        // K3
     std::int64_t t = A::template load<Site::kTakeReadTop>(top_);                  // K4
     if (t > b) {
-      A::template store<Site::kTakeRestoreEmpty>(bottom_, b + 1);                 // K7
+      A::template store<Site::kTakeRestoreEmpty>(bottom_, b + 1);  // K7
       return false;
     }
-    out = A::template load<Site::kTakeReadSlot>(slot(b));                         // K5
+    out = A::template load<Site::kTakeReadSlot>(slot(b));  // K5
     if (t < b) return true;
     // The last element (t == b): race the thieves for it. The planted defect keeps it as if others were left.
     if (has(Policy::defects(), Defect::kTakeLastWithoutCas)) return true;
     const bool won = A::template compare_exchange<Site::kTakeClaimLast>(top_, t, t + 1);  // K6
-    A::template store<Site::kTakeRestoreLast>(bottom_, b + 1);                    // K8
+    A::template store<Site::kTakeRestoreLast>(bottom_, b + 1);                            // K8
     return won;
   }
 
   // Any thread.
   StealResult steal(T& out) {
-    std::int64_t t = A::template load<Site::kStealReadTop>(top_);        // S1
-    A::template fence<Site::kStealFence>();                              // S2
+    std::int64_t t = A::template load<Site::kStealReadTop>(top_);              // S1
+    A::template fence<Site::kStealFence>();                                    // S2
     const std::int64_t b = A::template load<Site::kStealReadBottom>(bottom_);  // S3
     if (t >= b) return StealResult::kEmpty;
-    const T x = A::template load<Site::kStealReadSlot>(slot(t));         // S4
+    const T x = A::template load<Site::kStealReadSlot>(slot(t));                                          // S4
     if (!A::template compare_exchange<Site::kStealClaim>(top_, t, t + 1)) return StealResult::kLostRace;  // S5
     out = x;
     return StealResult::kSuccess;

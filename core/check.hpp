@@ -27,19 +27,19 @@ std::string describe_operands(const A& a, const B& b) {
 
 }  // namespace frontsteal::detail
 
-#define FRONTSTEAL_CHECK(cond)                                                              \
-  do {                                                                                      \
+#define FRONTSTEAL_CHECK(cond)                                                                 \
+  do {                                                                                         \
     if (!(cond)) ::frontsteal::detail::check_failed(#cond, std::string(), __FILE__, __LINE__); \
   } while (0)
 
-#define FRONTSTEAL_CHECK_OP(a, op, b)                                                       \
-  do {                                                                                      \
-    const auto& frontsteal_lhs_ = (a);                                                      \
-    const auto& frontsteal_rhs_ = (b);                                                      \
-    if (!(frontsteal_lhs_ op frontsteal_rhs_))                                              \
-      ::frontsteal::detail::check_failed(                                                   \
-          #a " " #op " " #b, ::frontsteal::detail::describe_operands(frontsteal_lhs_, frontsteal_rhs_), \
-          __FILE__, __LINE__);                                                              \
+#define FRONTSTEAL_CHECK_OP(a, op, b)                                                                               \
+  do {                                                                                                              \
+    const auto& frontsteal_lhs_ = (a);                                                                              \
+    const auto& frontsteal_rhs_ = (b);                                                                              \
+    if (!(frontsteal_lhs_ op frontsteal_rhs_))                                                                      \
+      ::frontsteal::detail::check_failed(#a " " #op " " #b,                                                         \
+                                         ::frontsteal::detail::describe_operands(frontsteal_lhs_, frontsteal_rhs_), \
+                                         __FILE__, __LINE__);                                                       \
   } while (0)
 
 #define FRONTSTEAL_CHECK_EQ(a, b) FRONTSTEAL_CHECK_OP(a, ==, b)

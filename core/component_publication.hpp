@@ -80,7 +80,8 @@ class ComponentPublication {
       A::write(pc.front, kNothing);
       A::write(pc.done_target, std::uint64_t{0});
     }
-    for (std::size_t k = 0; k < static_cast<std::size_t>(components_) * slots; ++k) A::write(stamps_[k], std::uint64_t{0});
+    for (std::size_t k = 0; k < static_cast<std::size_t>(components_) * slots; ++k)
+      A::write(stamps_[k], std::uint64_t{0});
   }
 
   ComponentId components() const noexcept { return components_; }
@@ -149,9 +150,9 @@ class ComponentPublication {
   struct PerComponent {
     alignas(64) Atomic<SlotIndex> published{kNothing};  // Published[c]: written by W2, read by P2
     Atomic<std::uint64_t> done{0};                      // Done[c]: surfaces of c finished, over all frames
-    Cell<std::uint64_t> surfaces;     // constant
-    Cell<SlotIndex> back;             // driver writes between frames; tessellators read
-    Cell<SlotIndex> front;            // driver only: the slot published by the last completed frame
+    Cell<std::uint64_t> surfaces;                       // constant
+    Cell<SlotIndex> back;                               // driver writes between frames; tessellators read
+    Cell<SlotIndex> front;                              // driver only: the slot published by the last completed frame
     Cell<std::uint64_t> done_target;  // driver writes between frames: Done[c] after this frame's last surface
   };
 
@@ -160,10 +161,10 @@ class ComponentPublication {
   const ComponentId components_;
   const SlotIndex slots_;
   std::unique_ptr<PerComponent[]> per_component_;
-  std::unique_ptr<Cell<std::uint64_t>[]> stamps_;      // stamp(c, s): W3 writes, driver reads between frames
-  alignas(64) Atomic<std::uint64_t> started_{0};       // Started: P1 writes, W3 reads
-  alignas(64) Atomic<std::uint64_t> completed_{0};     // Completed: P3 writes, D1 reads
-  std::uint64_t update_ = 0;                           // pusher only
+  std::unique_ptr<Cell<std::uint64_t>[]> stamps_;   // stamp(c, s): W3 writes, driver reads between frames
+  alignas(64) Atomic<std::uint64_t> started_{0};    // Started: P1 writes, W3 reads
+  alignas(64) Atomic<std::uint64_t> completed_{0};  // Completed: P3 writes, D1 reads
+  std::uint64_t update_ = 0;                        // pusher only
 };
 
 }  // namespace frontsteal

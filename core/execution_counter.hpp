@@ -17,9 +17,9 @@ namespace frontsteal {
 
 struct ExecutionAudit {
   std::uint64_t items = 0;
-  std::uint64_t lost = 0;        // items that never ran
-  std::uint64_t duplicated = 0;  // items that ran more than once
-  std::uint64_t extra_runs = 0;  // runs beyond the first, summed
+  std::uint64_t lost = 0;                // items that never ran
+  std::uint64_t duplicated = 0;          // items that ran more than once
+  std::uint64_t extra_runs = 0;          // runs beyond the first, summed
   std::vector<ItemId> first_lost;        // up to 8 examples, for the failure message
   std::vector<ItemId> first_duplicated;  // up to 8 examples
 
@@ -28,8 +28,7 @@ struct ExecutionAudit {
 };
 
 inline std::ostream& operator<<(std::ostream& out, const ExecutionAudit& a) {
-  out << "items=" << a.items << " lost=" << a.lost << " duplicated=" << a.duplicated
-      << " extra_runs=" << a.extra_runs;
+  out << "items=" << a.items << " lost=" << a.lost << " duplicated=" << a.duplicated << " extra_runs=" << a.extra_runs;
   if (!a.first_lost.empty()) {
     out << " lost_ids=";
     for (ItemId i : a.first_lost) out << i << ' ';
@@ -43,7 +42,8 @@ inline std::ostream& operator<<(std::ostream& out, const ExecutionAudit& a) {
 
 class ExecutionCounter {
  public:
-  explicit ExecutionCounter(ItemId items) : items_(items), runs_(std::make_unique<std::atomic<std::uint32_t>[]>(items)) {}
+  explicit ExecutionCounter(ItemId items)
+      : items_(items), runs_(std::make_unique<std::atomic<std::uint32_t>[]>(items)) {}
 
   void record(ItemId item) noexcept { runs_[item].fetch_add(1, std::memory_order::relaxed); }
   std::uint32_t runs(ItemId item) const noexcept { return runs_[item].load(std::memory_order::relaxed); }

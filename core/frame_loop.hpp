@@ -106,12 +106,12 @@ class StealingWorkers {
   // [0, items); each keeps its order, with adjacent ranges merged. Throws std::invalid_argument otherwise.
   void reseed(const std::vector<RangeList>& allocation) {
     if (allocation.size() != worker_count_) {
-      throw std::invalid_argument("frontsteal: reseed got " + std::to_string(allocation.size()) +
-                                  " lists for " + std::to_string(worker_count_) + " workers");
+      throw std::invalid_argument("frontsteal: reseed got " + std::to_string(allocation.size()) + " lists for " +
+                                  std::to_string(worker_count_) + " workers");
     }
     if (!is_partition(allocation, item_count_)) {
-      throw std::invalid_argument("frontsteal: reseed lists do not partition [0, " +
-                                  std::to_string(item_count_) + "): an id is missing, repeated or out of range");
+      throw std::invalid_argument("frontsteal: reseed lists do not partition [0, " + std::to_string(item_count_) +
+                                  "): an id is missing, repeated or out of range");
     }
     for (WorkerId w = 0; w < worker_count_; ++w) {
       RangeList merged;
@@ -203,8 +203,8 @@ class StealingWorkers {
     WorkersSnapshot s;
     s.workers.reserve(worker_count_);
     for (const auto& slot : slots_) {
-      s.workers.push_back({A::peek(slot->front), A::peek(slot->end), A::peek(slot->transient),
-                           slot->lock.debug_held()});
+      s.workers.push_back(
+          {A::peek(slot->front), A::peek(slot->end), A::peek(slot->transient), slot->lock.debug_held()});
     }
     s.active = active_.debug_count();
     s.started = A::peek(started_);
@@ -298,7 +298,7 @@ class StealingWorkers {
     // Install every list now rather than when each worker starts the next frame: a worker whose thread is
     // slow to wake (or preempted) then has its list stolen instead of holding the frame back.
     for (auto& w : workers_) w->owner.install(w->next_list);
-    active_.rearm(worker_count_);                           // E4
+    active_.rearm(worker_count_);                              // E4
     A::template store<Site::kFramePublishDone>(done_, frame);  // E5
     Backend::notify_all(done_);
   }

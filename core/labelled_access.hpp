@@ -6,7 +6,7 @@
 // orders live in policies.hpp, the instructions in the backend.
 #pragma once
 
-#include <source_location>
+#include "core/source_location.hpp"
 
 #include "core/memory_order.hpp"
 #include "core/site.hpp"
@@ -15,7 +15,7 @@ namespace frontsteal {
 
 template <class Backend, class Policy>
 struct Access {
-  using Where = std::source_location;
+  using Where = SourceLocation;
 
   template <Site S, class A>
   static auto load(const A& a, Where where = Where::current()) noexcept {

@@ -14,8 +14,16 @@ enum class Mo : std::uint8_t { kRelaxed, kAcquire, kRelease, kAcqRel, kSeqCst };
 
 // What a fence site does. kAsymmetricLight/Heavy are the two halves of an asymmetric fence: the light side
 // only stops the compiler; the heavy side (membarrier) makes every other thread's light side a full fence.
-enum class Fence : std::uint8_t { kNone, kCompiler, kAcquire, kRelease, kAcqRel, kSeqCst, kAsymmetricLight,
-                                  kAsymmetricHeavy };
+enum class Fence : std::uint8_t {
+  kNone,
+  kCompiler,
+  kAcquire,
+  kRelease,
+  kAcqRel,
+  kSeqCst,
+  kAsymmetricLight,
+  kAsymmetricHeavy
+};
 
 constexpr std::string_view name(Mo mo) noexcept {
   switch (mo) {
@@ -44,8 +52,6 @@ constexpr std::string_view name(Fence f) noexcept {
 
 // A fence that orders an earlier store before a later load of the same thread (StoreLoad), either by itself
 // (seq_cst) or together with the other side's heavy fence (asymmetric light).
-constexpr bool orders_store_load(Fence f) noexcept {
-  return f == Fence::kSeqCst || f == Fence::kAsymmetricHeavy;
-}
+constexpr bool orders_store_load(Fence f) noexcept { return f == Fence::kSeqCst || f == Fence::kAsymmetricHeavy; }
 
 }  // namespace frontsteal

@@ -203,12 +203,10 @@ template <class Policy>
 constexpr bool forbids_store_buffering() {
   const Fence f1 = Policy::fence(Site::kOwnerStoreLoadFence);
   const Fence f2 = Policy::fence(Site::kThiefStoreLoadFence);
-  const bool owner_seq = f1 == Fence::kSeqCst ||
-                         (Policy::order(Site::kOwnerAnnounce) == Mo::kSeqCst &&
-                          Policy::order(Site::kOwnerReadEnd) == Mo::kSeqCst);
-  const bool thief_seq = f2 == Fence::kSeqCst ||
-                         (Policy::order(Site::kThiefShrinkEnd) == Mo::kSeqCst &&
-                          Policy::order(Site::kThiefAwaitTransient) == Mo::kSeqCst);
+  const bool owner_seq = f1 == Fence::kSeqCst || (Policy::order(Site::kOwnerAnnounce) == Mo::kSeqCst &&
+                                                  Policy::order(Site::kOwnerReadEnd) == Mo::kSeqCst);
+  const bool thief_seq = f2 == Fence::kSeqCst || (Policy::order(Site::kThiefShrinkEnd) == Mo::kSeqCst &&
+                                                  Policy::order(Site::kThiefAwaitTransient) == Mo::kSeqCst);
   const bool asymmetric = f2 == Fence::kAsymmetricHeavy && f1 != Fence::kNone;
   return (owner_seq && thief_seq) || asymmetric;
 }

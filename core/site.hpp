@@ -16,67 +16,67 @@ namespace frontsteal {
 
 enum class Site : std::uint8_t {
   // Owner's claim of one item (paper §4.2.1 lines 1-2 with §4.2.2's ListTransient).
-  kOwnerAnnounce,         // O1  ListTransient[p] := 1
-  kOwnerStoreLoadFence,   // F1  orders O1 before O2 (the owner half of the Dekker handshake)
-  kOwnerReadEnd,          // O2  read the end of ActivityList[p]
-  kOwnerClaimFront,       // O3  Front[p] := f + 1
-  kOwnerRetract,          // O4  ListTransient[p] := 0
+  kOwnerAnnounce,        // O1  ListTransient[p] := 1
+  kOwnerStoreLoadFence,  // F1  orders O1 before O2 (the owner half of the Dekker handshake)
+  kOwnerReadEnd,         // O2  read the end of ActivityList[p]
+  kOwnerClaimFront,      // O3  Front[p] := f + 1
+  kOwnerRetract,         // O4  ListTransient[p] := 0
   // Thief's steal from victim b (§4.2.2 lines 651-654).
-  kThiefReadFront,        // T1  first read of Front[b], sizes the share
-  kThiefReadEnd,          // T2  read of End[b] (protected by LockList[b])
-  kThiefShrinkEnd,        // T3  End[b] := mid, the linearization point of a steal
-  kThiefStoreLoadFence,   // F2  orders T3 before T4 (the thief half of the Dekker handshake)
-  kThiefAwaitTransient,   // T4  busy-wait until ListTransient[b] == 0
-  kThiefRereadFront,      // T5  re-read Front[b]: everything below it is the victim's
+  kThiefReadFront,       // T1  first read of Front[b], sizes the share
+  kThiefReadEnd,         // T2  read of End[b] (protected by LockList[b])
+  kThiefShrinkEnd,       // T3  End[b] := mid, the linearization point of a steal
+  kThiefStoreLoadFence,  // F2  orders T3 before T4 (the thief half of the Dekker handshake)
+  kThiefAwaitTransient,  // T4  busy-wait until ListTransient[b] == 0
+  kThiefRereadFront,     // T5  re-read Front[b]: everything below it is the victim's
   // LockList[b], the non-blocking try-lock that serializes thieves (and a worker installing its own list).
-  kLockProbe,             // L1  cheap look before the exchange
-  kLockAcquire,           // L2  exchange 0 -> 1
-  kLockRelease,           // L3  store 0
+  kLockProbe,    // L1  cheap look before the exchange
+  kLockAcquire,  // L2  exchange 0 -> 1
+  kLockRelease,  // L3  store 0
   // A worker installing a new list into its own slot, under its own LockList.
-  kInstallFront,          // I1  Front[p] := 0
-  kInstallEnd,            // I2  End[p] := item count of the new list
+  kInstallFront,  // I1  Front[p] := 0
+  kInstallEnd,    // I2  End[p] := item count of the new list
   // Termination detection: the number of workers that hold, or are taking, unfinished work.
-  kActiveJoin,            // A1  a thief about to shrink a non-empty victim list: +1
-  kActiveLeave,           // A2  a worker whose list is exhausted: -1
-  kActivePoll,            // A3  an idle worker looks for 0: the frame's work is done
+  kActiveJoin,   // A1  a thief about to shrink a non-empty victim list: +1
+  kActiveLeave,  // A2  a worker whose list is exhausted: -1
+  kActivePoll,   // A3  an idle worker looks for 0: the frame's work is done
   // Frame boundary: persistent workers between frames.
-  kFrameStart,            // E1  caller publishes the next frame number
-  kFrameAwaitStart,       // E2  worker waits for it
-  kFrameArrive,           // E3  worker counts itself done with the frame
-  kFrameResetActive,      // E4  last arriver re-arms the active count for the next frame
-  kFramePublishDone,      // E5  last arriver publishes the frame as done
-  kFrameAwaitDone,        // E6  caller (and workers before the next frame) wait for it
+  kFrameStart,        // E1  caller publishes the next frame number
+  kFrameAwaitStart,   // E2  worker waits for it
+  kFrameArrive,       // E3  worker counts itself done with the frame
+  kFrameResetActive,  // E4  last arriver re-arms the active count for the next frame
+  kFramePublishDone,  // E5  last arriver publishes the frame as done
+  kFrameAwaitDone,    // E6  caller (and workers before the next frame) wait for it
   // Greedy rendering's publication of per-component triangles (component_publication.hpp, paper §5.2).
-  kPusherAnnounce,        // P1  pusher: Started := u before reading any component
-  kPusherReadPublished,   // P2  pusher: read Published[c], once per component and update
-  kPusherComplete,        // P3  pusher: Completed := u after drawing every component
-  kWriterCountDown,       // W1  tessellator: Remaining[c] -= 1 after writing one surface's triangles
-  kWriterPublish,         // W2  last tessellator of c: Published[c] := back slot (the atomic swap)
-  kWriterReadStarted,     // W3  same tessellator: read Started, the retired slot's reclamation stamp
-  kDriverReadCompleted,   // D1  frame driver: read Completed to see which retired slots are free
+  kPusherAnnounce,       // P1  pusher: Started := u before reading any component
+  kPusherReadPublished,  // P2  pusher: read Published[c], once per component and update
+  kPusherComplete,       // P3  pusher: Completed := u after drawing every component
+  kWriterCountDown,      // W1  tessellator: Remaining[c] -= 1 after writing one surface's triangles
+  kWriterPublish,        // W2  last tessellator of c: Published[c] := back slot (the atomic swap)
+  kWriterReadStarted,    // W3  same tessellator: read Started, the retired slot's reclamation stamp
+  kDriverReadCompleted,  // D1  frame driver: read Completed to see which retired slots are free
   // The Chase–Lev deque (chase_lev_deque.hpp). Labels B (push: the Bottom end), K (taKe), S (Steal), H (size
   // Hint); Lê et al.'s own labels (P1-P4, T1-T5, S1-S5) collide with the publication and stealing protocols,
   // so the deque's opening comment maps each of ours to theirs.
-  kPushReadBottom,        // B1  owner: read its own bottom
-  kPushReadTop,           // B2  owner: read top to check for room (Lê et al. P1)
-  kPushWriteSlot,         // B3  owner: buffer[b] := x (P2)
-  kPushReleaseFence,      // B4  release fence between B3 and B5 (P3)
-  kPushPublishBottom,     // B5  bottom := b + 1, the linearization point of push (P4)
-  kTakeReadBottom,        // K1  owner: read its own bottom (T1)
-  kTakeReserveBottom,     // K2  bottom := b - 1, reserving the element below (T2)
-  kTakeFence,             // K3  seq_cst fence between K2 and K4 (T3)
-  kTakeReadTop,           // K4  read top (T4)
-  kTakeReadSlot,          // K5  read buffer[b]
-  kTakeClaimLast,         // K6  CAS top t -> t + 1 for the last element (T5)
-  kTakeRestoreEmpty,      // K7  bottom := b + 1 after finding the deque empty
-  kTakeRestoreLast,       // K8  bottom := b + 1 after the race for the last element
-  kStealReadTop,          // S1  thief: read top
-  kStealFence,            // S2  seq_cst fence between S1 and S3
-  kStealReadBottom,       // S3  read bottom
-  kStealReadSlot,         // S4  read buffer[t] (before the CAS: afterwards the slot may be reused)
-  kStealClaim,            // S5  CAS top t -> t + 1, the linearization point of a successful steal
-  kHintReadBottom,        // H1  size_hint: read bottom (statistics and tests only)
-  kHintReadTop,           // H2  size_hint: read top
+  kPushReadBottom,     // B1  owner: read its own bottom
+  kPushReadTop,        // B2  owner: read top to check for room (Lê et al. P1)
+  kPushWriteSlot,      // B3  owner: buffer[b] := x (P2)
+  kPushReleaseFence,   // B4  release fence between B3 and B5 (P3)
+  kPushPublishBottom,  // B5  bottom := b + 1, the linearization point of push (P4)
+  kTakeReadBottom,     // K1  owner: read its own bottom (T1)
+  kTakeReserveBottom,  // K2  bottom := b - 1, reserving the element below (T2)
+  kTakeFence,          // K3  seq_cst fence between K2 and K4 (T3)
+  kTakeReadTop,        // K4  read top (T4)
+  kTakeReadSlot,       // K5  read buffer[b]
+  kTakeClaimLast,      // K6  CAS top t -> t + 1 for the last element (T5)
+  kTakeRestoreEmpty,   // K7  bottom := b + 1 after finding the deque empty
+  kTakeRestoreLast,    // K8  bottom := b + 1 after the race for the last element
+  kStealReadTop,       // S1  thief: read top
+  kStealFence,         // S2  seq_cst fence between S1 and S3
+  kStealReadBottom,    // S3  read bottom
+  kStealReadSlot,      // S4  read buffer[t] (before the CAS: afterwards the slot may be reused)
+  kStealClaim,         // S5  CAS top t -> t + 1, the linearization point of a successful steal
+  kHintReadBottom,     // H1  size_hint: read bottom (statistics and tests only)
+  kHintReadTop,        // H2  size_hint: read top
   kCount
 };
 
@@ -92,15 +92,16 @@ enum class Protocol : std::uint8_t { kStealing, kPublication, kChaseLev };
 
 struct SiteInfo {
   Site site;
-  std::string_view label;        // short label used in comments and reports, e.g. "O1"
-  std::string_view name;         // dotted name, e.g. "owner.announce"
+  std::string_view label;  // short label used in comments and reports, e.g. "O1"
+  std::string_view name;   // dotted name, e.g. "owner.announce"
   SiteKind kind;
-  std::string_view what;         // one line: what the access does
+  std::string_view what;  // one line: what the access does
   Protocol protocol = Protocol::kStealing;
 };
 
 inline constexpr std::array<SiteInfo, kSiteCount> kSiteTable{{
-    {Site::kOwnerAnnounce, "O1", "owner.announce", SiteKind::kStore, "ListTransient[p] := 1 before reading the list end"},
+    {Site::kOwnerAnnounce, "O1", "owner.announce", SiteKind::kStore,
+     "ListTransient[p] := 1 before reading the list end"},
     {Site::kOwnerStoreLoadFence, "F1", "owner.storeload_fence", SiteKind::kFence, "StoreLoad between O1 and O2"},
     {Site::kOwnerReadEnd, "O2", "owner.read_end", SiteKind::kLoad, "read End[p] to decide whether Front is claimable"},
     {Site::kOwnerClaimFront, "O3", "owner.claim_front", SiteKind::kStore, "Front[p] := f + 1, claiming item f"},
@@ -143,12 +144,10 @@ inline constexpr std::array<SiteInfo, kSiteCount> kSiteTable{{
      Protocol::kChaseLev},
     {Site::kPushReadTop, "B2", "push.read_top", SiteKind::kLoad, "read top: is there room for one more element",
      Protocol::kChaseLev},
-    {Site::kPushWriteSlot, "B3", "push.write_slot", SiteKind::kStore, "buffer[b] := x",
-     Protocol::kChaseLev},
-    {Site::kPushReleaseFence, "B4", "push.release_fence", SiteKind::kFence, "orders B3 before B5",
-     Protocol::kChaseLev},
-    {Site::kPushPublishBottom, "B5", "push.publish_bottom", SiteKind::kStore, "bottom := b + 1: the element is stealable",
-     Protocol::kChaseLev},
+    {Site::kPushWriteSlot, "B3", "push.write_slot", SiteKind::kStore, "buffer[b] := x", Protocol::kChaseLev},
+    {Site::kPushReleaseFence, "B4", "push.release_fence", SiteKind::kFence, "orders B3 before B5", Protocol::kChaseLev},
+    {Site::kPushPublishBottom, "B5", "push.publish_bottom", SiteKind::kStore,
+     "bottom := b + 1: the element is stealable", Protocol::kChaseLev},
     {Site::kTakeReadBottom, "K1", "take.read_bottom", SiteKind::kLoad, "owner reads its own bottom",
      Protocol::kChaseLev},
     {Site::kTakeReserveBottom, "K2", "take.reserve_bottom", SiteKind::kStore, "bottom := b - 1 before looking at top",
@@ -157,18 +156,16 @@ inline constexpr std::array<SiteInfo, kSiteCount> kSiteTable{{
      Protocol::kChaseLev},
     {Site::kTakeReadTop, "K4", "take.read_top", SiteKind::kLoad, "read top: empty, many, or the last element",
      Protocol::kChaseLev},
-    {Site::kTakeReadSlot, "K5", "take.read_slot", SiteKind::kLoad, "read buffer[b]",
-     Protocol::kChaseLev},
-    {Site::kTakeClaimLast, "K6", "take.claim_last", SiteKind::kReadModifyWrite, "CAS top t -> t + 1: race thieves for the last element",
-     Protocol::kChaseLev},
+    {Site::kTakeReadSlot, "K5", "take.read_slot", SiteKind::kLoad, "read buffer[b]", Protocol::kChaseLev},
+    {Site::kTakeClaimLast, "K6", "take.claim_last", SiteKind::kReadModifyWrite,
+     "CAS top t -> t + 1: race thieves for the last element", Protocol::kChaseLev},
     {Site::kTakeRestoreEmpty, "K7", "take.restore_empty", SiteKind::kStore, "bottom := b + 1: the deque was empty",
      Protocol::kChaseLev},
     {Site::kTakeRestoreLast, "K8", "take.restore_last", SiteKind::kStore, "bottom := b + 1 after the last-element race",
      Protocol::kChaseLev},
-    {Site::kStealReadTop, "S1", "steal.read_top", SiteKind::kLoad, "thief reads top",
-     Protocol::kChaseLev},
-    {Site::kStealFence, "S2", "steal.storeload_fence", SiteKind::kFence, "orders S1 before S3 in the total order of fences",
-     Protocol::kChaseLev},
+    {Site::kStealReadTop, "S1", "steal.read_top", SiteKind::kLoad, "thief reads top", Protocol::kChaseLev},
+    {Site::kStealFence, "S2", "steal.storeload_fence", SiteKind::kFence,
+     "orders S1 before S3 in the total order of fences", Protocol::kChaseLev},
     {Site::kStealReadBottom, "S3", "steal.read_bottom", SiteKind::kLoad, "read bottom: is there an element at top",
      Protocol::kChaseLev},
     {Site::kStealReadSlot, "S4", "steal.read_slot", SiteKind::kLoad, "read buffer[t] before claiming it",

@@ -9,7 +9,6 @@
 
 #include <atomic>
 #include <cstdint>
-#include <source_location>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -18,6 +17,7 @@
 #include "core/membarrier.hpp"
 #include "core/memory_order.hpp"
 #include "core/site.hpp"
+#include "core/source_location.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -38,7 +38,7 @@ struct StdBackend {
   using Atomic = std::atomic<T>;
   template <class T>
   using Cell = PlainCell<T>;
-  using Where = std::source_location;
+  using Where = SourceLocation;
 
   static constexpr std::memory_order native(Mo mo) noexcept {
     switch (mo) {

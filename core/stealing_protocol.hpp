@@ -189,11 +189,11 @@ class Owner {
 // ---------------------------------------------------------------------------------------------------------
 // Thief: takes the second half of a victim's unclaimed items.
 // ---------------------------------------------------------------------------------------------------------
-enum class [[nodiscard]] StealOutcome : std::uint8_t {
-  kLockBusy,    // another thief holds the victim's LockList: move on (paper line 63)
-  kEmpty,       // the victim had no unclaimed item
-  kSkippedAll,  // the victim claimed the whole share before the re-read: nothing kept
-  kStolen,      // share() holds at least one item, ready to install
+enum class [[nodiscard]] StealOutcome : std::uint8_t{
+    kLockBusy,    // another thief holds the victim's LockList: move on (paper line 63)
+    kEmpty,       // the victim had no unclaimed item
+    kSkippedAll,  // the victim claimed the whole share before the re-read: nothing kept
+    kStolen,      // share() holds at least one item, ready to install
 };
 
 template <class Backend, class Policy>
@@ -244,7 +244,7 @@ class Thief {
       if (e.flat_begin >= end_) break;
       // An entry that starts above mid is copied from its own start (max): the share spans several entries.
       const std::uint32_t lo = has(Policy::defects(), Defect::kShareLowerBound) ? mid_  // negative control only
-                                                                               : std::max(mid_, e.flat_begin);
+                                                                                : std::max(mid_, e.flat_begin);
       const std::uint32_t hi = std::min(end_, e.flat_end());
       append_merging(share_, {e.ids.begin + (lo - e.flat_begin), e.ids.begin + (hi - e.flat_begin)});
     }
@@ -255,13 +255,13 @@ class Thief {
   // A1 must come first (I-T of active_workers.hpp): once End is lowered the victim may exhaust its list and
   // leave, and the share [mid, e) is then held by no counted worker until A1.
   void shrink_victim(Slot& victim) noexcept {
-    if (has(Policy::defects(), Defect::kThiefJoinsLate)) {  // negative control only: the order reversed
-      A::template store<Site::kThiefShrinkEnd>(victim.end, mid_);          // T3
-      active_.join();                                                      // A1 (too late)
+    if (has(Policy::defects(), Defect::kThiefJoinsLate)) {         // negative control only: the order reversed
+      A::template store<Site::kThiefShrinkEnd>(victim.end, mid_);  // T3
+      active_.join();                                              // A1 (too late)
       return;
     }
-    active_.join();                                                        // A1
-    A::template store<Site::kThiefShrinkEnd>(victim.end, mid_);            // T3
+    active_.join();                                              // A1
+    A::template store<Site::kThiefShrinkEnd>(victim.end, mid_);  // T3
   }
   void storeload_fence() noexcept { A::template fence<Site::kThiefStoreLoadFence>(); }  // F2
 
@@ -307,13 +307,16 @@ class Thief {
     std::uint32_t hi = n;
     while (hi - lo > 1) {
       const std::uint32_t m = lo + (hi - lo) / 2;
-      if (A::read(victim.entries[m]).flat_begin <= pos) lo = m; else hi = m;
+      if (A::read(victim.entries[m]).flat_begin <= pos)
+        lo = m;
+      else
+        hi = m;
     }
     return lo;
   }
 
   ActiveWorkers<Backend, Policy>& active_;
-  RangeList share_;            // staging: private to this thread
+  RangeList share_;  // staging: private to this thread
   std::uint32_t mid_ = 0;
   std::uint32_t end_ = 0;
   std::uint32_t skipped_ = 0;

@@ -84,7 +84,8 @@ class StealingScheduler {
     core_.release_frame(frame_);
     core_.await_frame_done(frame_);
     last_.frame = frame_;
-    last_.wall_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+    last_.wall_ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
     last_.workers.resize(core_.worker_count());
     for (WorkerId w = 0; w < core_.worker_count(); ++w) last_.workers[w] = core_.stats(w);
     for (WorkerId w = 0; w < core_.worker_count(); ++w) {

@@ -23,7 +23,7 @@ class TryLock {
   TryLock& operator=(const TryLock&) = delete;
 
   [[nodiscard]] bool try_lock() noexcept {
-    if (A::template load<Site::kLockProbe>(held_) != 0u) return false;            // L1
+    if (A::template load<Site::kLockProbe>(held_) != 0u) return false;               // L1
     return A::template exchange<Site::kLockAcquire>(held_, std::uint32_t{1}) == 0u;  // L2
   }
 

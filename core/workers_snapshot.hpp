@@ -24,10 +24,10 @@ struct WorkerSnapshot {
 
 struct WorkersSnapshot {
   std::vector<WorkerSnapshot> workers;
-  std::uint32_t active = 0;     // ActiveWorkers count (termination, A1-A3)
-  std::uint32_t started = 0;    // frames released by the caller (E1)
-  std::uint32_t done = 0;       // frames completed (E5)
-  std::uint64_t arrivals = 0;   // worker arrivals over all frames (E3)
+  std::uint32_t active = 0;    // ActiveWorkers count (termination, A1-A3)
+  std::uint32_t started = 0;   // frames released by the caller (E1)
+  std::uint32_t done = 0;      // frames completed (E5)
+  std::uint64_t arrivals = 0;  // worker arrivals over all frames (E3)
 
   // A frame is in flight: released and not yet completed. Only then can a worker be stuck inside it; between
   // frames the caller may take as long as it likes.

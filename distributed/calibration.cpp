@@ -95,12 +95,15 @@ report::Json calibration_json(const std::vector<CalibrationRow>& rows, int ranks
   doc["target"] = "rank 1 spinning on MPI_Iprobe (an attentive target)";
   report::Json list = report::Json::array();
   for (const CalibrationRow& r : rows) {
-    list.push_back({{"operation", r.operation}, {"median_ns", r.median_ns},
-                    {"median_ci95_ns", {r.ci_low_ns, r.ci_high_ns}}, {"repetitions", r.repetitions},
+    list.push_back({{"operation", r.operation},
+                    {"median_ns", r.median_ns},
+                    {"median_ci95_ns", {r.ci_low_ns, r.ci_high_ns}},
+                    {"repetitions", r.repetitions},
                     {"time_bounded", r.time_bounded}});
   }
   doc["operations"] = list;
-  doc["published_reference_ns"] = {{"get", 1300}, {"compare_and_swap", 1700},
+  doc["published_reference_ns"] = {{"get", 1300},
+                                   {"compare_and_swap", 1700},
                                    {"note", "MPI-3 RMA work stealing, two processes on one computer, async progress"}};
   return doc;
 }
@@ -115,8 +118,10 @@ int calibrate(const Options& o, int rank, int ranks, RmaWindow& win, const Progr
   if (rank == 0) {
     const std::vector<CalibrationRow> rows = measure_from_rank0(o, win);
     for (int r = 1; r < ranks; ++r) MPI_Send(nullptr, 0, MPI_BYTE, r, kTagCalibrationDone, MPI_COMM_WORLD);
-    std::printf("calibration: rank 0 -> rank 1, up to %d repetitions or %.1f s each, median [95 %% CI] ns "
-                "(measured, this machine; %s)\n", kReps, o.calibrate_op_s, progress.describe().c_str());
+    std::printf(
+        "calibration: rank 0 -> rank 1, up to %d repetitions or %.1f s each, median [95 %% CI] ns "
+        "(measured, this machine; %s)\n",
+        kReps, o.calibrate_op_s, progress.describe().c_str());
     for (const CalibrationRow& r : rows) {
       std::printf("  %-52s %10.0f ns  [%.0f, %.0f]  n=%d%s\n", r.operation.c_str(), r.median_ns, r.ci_low_ns,
                   r.ci_high_ns, r.repetitions, r.time_bounded ? " (time-bounded)" : "");
@@ -137,7 +142,7 @@ int calibrate(const Options& o, int rank, int ranks, RmaWindow& win, const Progr
       if (!flag) continue;
       std::uint32_t word = 0;
       MPI_Recv(&word, st.MPI_TAG == kTagPing ? 1 : 0, MPI_UINT32_T, 0, st.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-      if (st.MPI_TAG != kTagPing) break;  // "done"
+      if (st.MPI_TAG != kTagPing) break;                              // "done"
       MPI_Send(&word, 1, MPI_UINT32_T, 0, kTagPing, MPI_COMM_WORLD);  // the ping's echo
     }
   }

@@ -13,10 +13,15 @@
 
 namespace frontsteal::mpi {
 
-FrameRunner::FrameRunner(const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win,
-                         double owner_progress_us)
-    : o_(o), wl_(wl), rank_(rank), ranks_(ranks), win_(win), active_(win),
-      progress_(MPI_COMM_WORLD, owner_progress_us), request_poll_(std::max(0.0, owner_progress_us)) {
+FrameRunner::FrameRunner(const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win, double owner_progress_us)
+    : o_(o),
+      wl_(wl),
+      rank_(rank),
+      ranks_(ranks),
+      win_(win),
+      active_(win),
+      progress_(MPI_COMM_WORLD, owner_progress_us),
+      request_poll_(std::max(0.0, owner_progress_us)) {
   for (int v = 0; v < ranks; ++v) {
     if (v != rank) victims_.push_back(v);
   }
@@ -53,8 +58,8 @@ void FrameRunner::begin_frame(const std::string& scheduler) {
 // fact the test can assert, not a matter of timing. The MPI_Win_sync every millisecond is the stalled
 // rank's progress call (owner_progress.hpp): a sleeping process makes none otherwise.
 void FrameRunner::stall(int frame) {
-  std::fprintf(stderr, "%s: rank %d: --stall: stalling %d ms in frame %d (%s)\n", kProgram.data(), rank_,
-               o_.stall_ms, frame, scheduler_->c_str());
+  std::fprintf(stderr, "%s: rank %d: --stall: stalling %d ms in frame %d (%s)\n", kProgram.data(), rank_, o_.stall_ms,
+               frame, scheduler_->c_str());
   const auto start = Clock::now();
   const std::uint32_t end_before = win_.local(kEnd).load(std::memory_order_acquire);
   std::this_thread::sleep_for(std::chrono::milliseconds(o_.stall_ms));

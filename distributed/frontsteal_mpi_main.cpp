@@ -54,9 +54,11 @@ int refuse_unusable_window(fm::RmaWindow& win, int rank) {
   int unified = win.unified() ? 1 : 0, all_unified = 0;
   MPI_Allreduce(&unified, &all_unified, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);  // every rank decides alike
   if (all_unified == 0) {
-    if (rank == 0) std::fprintf(stderr, "%s: the window's memory model is not MPI_WIN_UNIFIED: the owner's local "
-                                "loads and stores would not be coherent with thieves' RMA; refusing to run\n",
-                                fm::kProgram.data());
+    if (rank == 0)
+      std::fprintf(stderr,
+                   "%s: the window's memory model is not MPI_WIN_UNIFIED: the owner's local "
+                   "loads and stores would not be coherent with thieves' RMA; refusing to run\n",
+                   fm::kProgram.data());
     return 1;
   }
   fm::arm_watchdog();  // an operation that never completes on this transport is reported, not a silent hang
@@ -67,8 +69,11 @@ int refuse_unusable_window(fm::RmaWindow& win, int rank) {
                  check.first_failure.c_str());
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  if (rank == 0) std::fprintf(stderr, "%s: the window's one-sided operations return wrong results on this "
-                              "transport (window_self_test.hpp); refusing to run\n", fm::kProgram.data());
+  if (rank == 0)
+    std::fprintf(stderr,
+                 "%s: the window's one-sided operations return wrong results on this "
+                 "transport (window_self_test.hpp); refusing to run\n",
+                 fm::kProgram.data());
   return 1;
 }
 

@@ -97,15 +97,19 @@ Options parse_options(int argc, char** argv) {
   cli.option("--scene", o.scene, "synthetic:N | teapot | teacup | teaspoon | plant:N[:seed] | model file")
       ->check(scene_validator());
   cli.option("--frames", o.frames, "frames along the camera path")->check(CLI::Range(1, 100000));
-  cli.app().add_option("--schedulers", o.schedulers, "comma list of rma,request,central,static")
-      ->delimiter(',')->check(CLI::IsMember({"rma", "request", "central", "static"}));
-  cli.option("--work-ns", o.work_ns, "synthetic: cost of a light item in ~ns of busy work")->check(CLI::Range(0u, 100000000u));
+  cli.app()
+      .add_option("--schedulers", o.schedulers, "comma list of rma,request,central,static")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"rma", "request", "central", "static"}));
+  cli.option("--work-ns", o.work_ns, "synthetic: cost of a light item in ~ns of busy work")
+      ->check(CLI::Range(0u, 100000000u));
   cli.option("--skew", o.skew, "synthetic: the heavy fifth of the ids (a window that moves each frame) costs K x")
       ->check(CLI::Range(1u, 10000u));
   cli.option("--tolerance", o.tolerance, "tessellation pixel tolerance")->check(CLI::PositiveNumber);
   cli.option("--json", o.json, "also write the results (or, with --calibrate, the latencies) as JSON to this file");
   cli.option("--markdown", o.markdown, "also write the medians with 95 % CIs and the noise verdict as markdown");
-  cli.option("--plots", o.plots, "also write plots to this directory: frame time per scheduler, busy and idle time "
+  cli.option("--plots", o.plots,
+             "also write plots to this directory: frame time per scheduler, busy and idle time "
              "per rank (PNG through gnuplot, with their data and script)");
   cli.option("--watchdog-s", o.watchdog_s, "a rank that makes no progress for S s exits 86 (0 = off)")
       ->check(CLI::Range(0.0, 86400.0));
@@ -114,22 +118,28 @@ Options parse_options(int argc, char** argv) {
       ->check(integers_validator({1 << 20, 100000, 3600000}, "RANK:FRAME:MS"));
   cli.option("--die", die, "R:F: rank R exits abruptly (status 3) after its first item of frame F (fault test)")
       ->check(integers_validator({1 << 20, 100000}, "RANK:FRAME"));
-  cli.option("--plant-defect", o.defect, "negative controls: none | skip-reread (rma thief skips T4/T5) | "
+  cli.option("--plant-defect", o.defect,
+             "negative controls: none | skip-reread (rma thief skips T4/T5) | "
              "request-keeps-share (request owner sends a share and keeps it) | read-before-flush (one-sided results "
              "read before MPI_Win_flush: the start-up window self-test must fail over osc/pt2pt)")
       ->check(CLI::IsMember({"none", "skip-reread", "request-keeps-share", "read-before-flush"}));
-  cli.flag("--force-overlap", o.force_overlap, "rma thieves wait, before T3, until the victim has claimed into the planned share");
-  cli.option("--owner-fence", o.owner_fence, "the rma owner's F1: cpu (a seq_cst fence, no MPI call on the owner path) | "
+  cli.flag("--force-overlap", o.force_overlap,
+           "rma thieves wait, before T3, until the victim has claimed into the planned share");
+  cli.option("--owner-fence", o.owner_fence,
+             "the rma owner's F1: cpu (a seq_cst fence, no MPI call on the owner path) | "
              "win-sync (MPI_Win_sync + the fence: the standard's barrier, but a progress call per claim)")
       ->check(CLI::IsMember({"cpu", "win-sync"}));
-  cli.option("--owner-progress", o.owner_progress, "the busy rma owner calls MPI_Iprobe at most every US microseconds "
+  cli.option("--owner-progress", o.owner_progress,
+             "the busy rma owner calls MPI_Iprobe at most every US microseconds "
              "(0: every item) so one-sided operations aimed at it complete on transports without asynchronous "
              "progress (TCP); the request owner's poll and rank 0 in central chunks use the same interval; "
              "auto: off under Open MPI with every rank on one node (osc/sm), else 50")
       ->check(owner_progress_validator());
-  cli.flag("--require-steals", o.require_steals, "exit 1 unless rma and request each made at least one steal (tests: "
+  cli.flag("--require-steals", o.require_steals,
+           "exit 1 unless rma and request each made at least one steal (tests: "
            "stealing was exercised)");
-  cli.flag("--calibrate", o.calibrate, "measure get/put/CAS/fetch-and-op/flush latency and the owner's per-item "
+  cli.flag("--calibrate", o.calibrate,
+           "measure get/put/CAS/fetch-and-op/flush latency and the owner's per-item "
            "costs, then exit");
   cli.option("--calibrate-op-s", o.calibrate_op_s, "--calibrate: at most this many seconds per operation")
       ->check(CLI::Range(0.01, 600.0));

@@ -9,7 +9,8 @@
 
 namespace frontsteal::mpi {
 
-void write_run_plots(const std::string& dir_name, const std::string& title, const std::vector<SchedulerResult>& results) {
+void write_run_plots(const std::string& dir_name, const std::string& title,
+                     const std::vector<SchedulerResult>& results) {
   const report::ResultsDir dir(std::string(kProgram), dir_name);
   std::ostringstream frames;  // one gnuplot index per scheduler: frame, ms
   for (const SchedulerResult& r : results) {
@@ -34,14 +35,17 @@ void write_run_plots(const std::string& dir_name, const std::string& title, cons
   dir.write("frontsteal-mpi-ranks.dat", ranks.str());
   std::ostringstream gp;
   gp << "# gnuplot script written by frontsteal-mpi; run from " << dir_name << ": gnuplot frontsteal-mpi.gp\n"
-     << "set terminal pngcairo size 1100,640 font 'sans,10' noenhanced\nset grid\nset key outside bottom center horizontal\n"
+     << "set terminal pngcairo size 1100,640 font 'sans,10' noenhanced\nset grid\nset key outside bottom center "
+        "horizontal\n"
      << "set output 'frontsteal-mpi-frames.png'\n"
-     << "set title \"Frame time per scheduler (measured)\\n" << report::gnuplot_text(title, true) << "\"\n"
+     << "set title \"Frame time per scheduler (measured)\\n"
+     << report::gnuplot_text(title, true) << "\"\n"
      << "set xlabel 'frame'\nset ylabel 'ms'\nset yrange [0:*]\n"
      << "plot for [i=0:" << (results.empty() ? 0 : results.size() - 1)
      << "] 'frontsteal-mpi-frames.dat' index i using 1:2 with linespoints lt 1+i pt 1+i title columnheader(1)\n"
      << "set output 'frontsteal-mpi-ranks.png'\n"
-     << "set title \"Busy and idle time per rank, all frames (measured)\\n" << report::gnuplot_text(title, true) << "\"\n"
+     << "set title \"Busy and idle time per rank, all frames (measured)\\n"
+     << report::gnuplot_text(title, true) << "\"\n"
      << "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.8 border -1\n"
      << "set boxwidth 0.75\nset xtics rotate by -45\nset ylabel 's'\nset xlabel ''\nunset xrange\n"
      << "plot 'frontsteal-mpi-ranks.dat' using 2:xtic(1) title 'busy (items)' lc rgb '#3b75af', "

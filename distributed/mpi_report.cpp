@@ -48,13 +48,20 @@ report::Json interval(double lo, double hi) { return report::Json::array({lo, hi
 
 report::Table intervals_table(const std::vector<SchedulerResult>& results) {
   using report::Cell;
-  report::Table t({{"scheduler", "scheduler", false}, {"rank", "rank"},
-                   {"frame_ms_median", "frame ms median"}, {"frame_ms_ci_low", "95% CI low"},
-                   {"frame_ms_ci_high", "95% CI high"}, {"frames_per_s_from_median", "frames/s (1/median)"},
-                   {"steals", "steals"}, {"steal_latency_median_us", "steal us median"},
-                   {"steal_latency_ci_low_us", "95% CI low"}, {"steal_latency_ci_high_us", "95% CI high"},
-                   {"owner_ns_median", "owner ns/op median"}, {"owner_ns_ci_low", "95% CI low"},
-                   {"owner_ns_ci_high", "95% CI high"}, {"progress_calls", "progress calls"},
+  report::Table t({{"scheduler", "scheduler", false},
+                   {"rank", "rank"},
+                   {"frame_ms_median", "frame ms median"},
+                   {"frame_ms_ci_low", "95% CI low"},
+                   {"frame_ms_ci_high", "95% CI high"},
+                   {"frames_per_s_from_median", "frames/s (1/median)"},
+                   {"steals", "steals"},
+                   {"steal_latency_median_us", "steal us median"},
+                   {"steal_latency_ci_low_us", "95% CI low"},
+                   {"steal_latency_ci_high_us", "95% CI high"},
+                   {"owner_ns_median", "owner ns/op median"},
+                   {"owner_ns_ci_low", "95% CI low"},
+                   {"owner_ns_ci_high", "95% CI high"},
+                   {"progress_calls", "progress calls"},
                    {"noise", "noise", false}});
   for (const SchedulerResult& r : results) {
     std::vector<double> ms(r.frame_s.size());
@@ -64,17 +71,16 @@ report::Table intervals_table(const std::vector<SchedulerResult>& results) {
       const RankStats& s = r.ranks[k];
       const bool first = k == 0;
       const bool stole = s.steals > 0;
-      t.add_row({first ? Cell(r.name) : Cell(""), Cell(static_cast<int>(k)),
-                 first ? Cell::fixed(f.median, 2) : Cell::empty(), first ? Cell::fixed(f.low, 2) : Cell::empty(),
-                 first ? Cell::fixed(f.high, 2) : Cell::empty(),
-                 first && f.median > 0 ? Cell::fixed(1000 / f.median, 2) : Cell::empty(),
-                 Cell(static_cast<std::int64_t>(s.steals)),
-                 stole ? Cell::fixed(s.steal_latency_median_us, 1) : Cell::empty(),
-                 stole ? Cell::fixed(s.steal_latency_ci_low_us, 1) : Cell::empty(),
-                 stole ? Cell::fixed(s.steal_latency_ci_high_us, 1) : Cell::empty(),
-                 Cell::fixed(s.owner_overhead_median_ns, 1), Cell::fixed(s.owner_overhead_ci_low_ns, 1),
-                 Cell::fixed(s.owner_overhead_ci_high_ns, 1), Cell(static_cast<std::int64_t>(s.progress_calls)),
-                 first ? Cell(r.noise.busy ? "NOISY" : "quiet") : Cell("")});
+      t.add_row(
+          {first ? Cell(r.name) : Cell(""), Cell(static_cast<int>(k)), first ? Cell::fixed(f.median, 2) : Cell::empty(),
+           first ? Cell::fixed(f.low, 2) : Cell::empty(), first ? Cell::fixed(f.high, 2) : Cell::empty(),
+           first && f.median > 0 ? Cell::fixed(1000 / f.median, 2) : Cell::empty(),
+           Cell(static_cast<std::int64_t>(s.steals)), stole ? Cell::fixed(s.steal_latency_median_us, 1) : Cell::empty(),
+           stole ? Cell::fixed(s.steal_latency_ci_low_us, 1) : Cell::empty(),
+           stole ? Cell::fixed(s.steal_latency_ci_high_us, 1) : Cell::empty(),
+           Cell::fixed(s.owner_overhead_median_ns, 1), Cell::fixed(s.owner_overhead_ci_low_ns, 1),
+           Cell::fixed(s.owner_overhead_ci_high_ns, 1), Cell(static_cast<std::int64_t>(s.progress_calls)),
+           first ? Cell(r.noise.busy ? "NOISY" : "quiet") : Cell("")});
     }
   }
   return t;
@@ -111,12 +117,20 @@ report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>&
     for (std::size_t k = 0; k < r.ranks.size(); ++k) {
       const RankStats& s = r.ranks[k];
       sj["per_rank"].push_back(
-          {{"rank", k}, {"busy_s", s.busy_s}, {"items", s.items}, {"steals", s.steals},
-           {"steal_attempts", s.steal_attempts}, {"steal_latency_mean_us", mean_latency_us(s)},
-           {"steal_latency_max_us", 1e6 * s.steal_latency_max_s}, {"bytes_moved", s.bytes},
+          {{"rank", k},
+           {"busy_s", s.busy_s},
+           {"items", s.items},
+           {"steals", s.steals},
+           {"steal_attempts", s.steal_attempts},
+           {"steal_latency_mean_us", mean_latency_us(s)},
+           {"steal_latency_max_us", 1e6 * s.steal_latency_max_s},
+           {"bytes_moved", s.bytes},
            {"owner_overhead_ns_per_op", s.owner_ops > 0 ? 1e9 * s.owner_overhead_s / s.owner_ops : 0.0},
-           {"owner_overhead_median_ns", s.owner_overhead_median_ns}, {"t4_wait_s", s.t4_wait_s},
-           {"t4_polls", s.t4_spins}, {"idle_s", s.idle_s}, {"owner_ops", s.owner_ops},
+           {"owner_overhead_median_ns", s.owner_overhead_median_ns},
+           {"t4_wait_s", s.t4_wait_s},
+           {"t4_polls", s.t4_spins},
+           {"idle_s", s.idle_s},
+           {"owner_ops", s.owner_ops},
            {"requests_served", s.requests_served},
            {"steal_latency_median_us", s.steal_latency_median_us},
            {"steal_latency_median_ci95_us", interval(s.steal_latency_ci_low_us, s.steal_latency_ci_high_us)},
@@ -126,8 +140,11 @@ report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>&
     sj["median_frame_ms_ci95"] = interval(f.low, f.high);
     sj["frames_per_s_from_median"] = f.median > 0 ? 1000 / f.median : 0.0;
     sj["frames_per_s_from_median_ci95"] = interval(f.high > 0 ? 1000 / f.high : 0.0, f.low > 0 ? 1000 / f.low : 0.0);
-    sj["noise"] = {{"busy", r.noise.busy}, {"reason", r.noise.reason}, {"other_share_max", r.noise.other_share_max},
-                   {"steal_share_max", r.noise.steal_share_max}, {"load1", r.noise.load1}};
+    sj["noise"] = {{"busy", r.noise.busy},
+                   {"reason", r.noise.reason},
+                   {"other_share_max", r.noise.other_share_max},
+                   {"steal_share_max", r.noise.steal_share_max},
+                   {"load1", r.noise.load1}};
     js["schedulers"].push_back(sj);
   }
   js["owner_progress"] = run.progress.describe();
@@ -140,8 +157,10 @@ void report_results(const Options& o, const RunSummary& run, const std::vector<S
   print_classic_table(run, results);
   const report::Table t = intervals_table(results);
   const std::string warning = noise_warning(results);
-  std::printf("\nmedians with 95 %% bootstrap confidence intervals (frames: per-frame times; steals and owner "
-              "ops: per rank); %s\n%s", run.progress.describe().c_str(), t.terminal().c_str());
+  std::printf(
+      "\nmedians with 95 %% bootstrap confidence intervals (frames: per-frame times; steals and owner "
+      "ops: per rank); %s\n%s",
+      run.progress.describe().c_str(), t.terminal().c_str());
   std::printf("%s\n", warning.empty() ? "noise monitor: every scheduler's window was quiet" : warning.c_str());
   std::printf("every frame audited: each item exactly once, triangles equal to the serial loop's\n");
   if (!o.json.empty()) {
@@ -150,15 +169,17 @@ void report_results(const Options& o, const RunSummary& run, const std::vector<S
   }
   if (!o.markdown.empty()) {
     std::string md = "# frontsteal-mpi: " + std::to_string(run.ranks) + " ranks, " + run.scene + " (" +
-                     std::to_string(run.items) + " items), " + std::to_string(run.frames) + " frames (measured, commit " +
-                     FRONTSTEAL_GIT_COMMIT + ")\n\n" + run.progress.describe() + "\n\n" + t.markdown() + "\n" +
+                     std::to_string(run.items) + " items), " + std::to_string(run.frames) +
+                     " frames (measured, commit " + FRONTSTEAL_GIT_COMMIT + ")\n\n" + run.progress.describe() + "\n\n" +
+                     t.markdown() + "\n" +
                      (warning.empty() ? "Noise monitor: every scheduler's window was quiet.\n" : warning + "\n");
     report::write_atomically(o.markdown, md);
     std::fprintf(stderr, "%s: wrote %s\n", kProgram.data(), o.markdown.c_str());
   }
   if (!o.plots.empty()) {
-    write_run_plots(o.plots, std::to_string(run.ranks) + " ranks, " + run.scene + ", " + std::to_string(run.frames) +
-                             " frames, commit " + FRONTSTEAL_GIT_COMMIT + "; " + run.progress.describe(),
+    write_run_plots(o.plots,
+                    std::to_string(run.ranks) + " ranks, " + run.scene + ", " + std::to_string(run.frames) +
+                        " frames, commit " + FRONTSTEAL_GIT_COMMIT + "; " + run.progress.describe(),
                     results);
     std::fprintf(stderr, "%s: wrote the plots to %s\n", kProgram.data(), o.plots.c_str());
   }

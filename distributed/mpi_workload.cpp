@@ -1,7 +1,6 @@
 // mpi_workload.cpp — the workload of frontsteal-mpi (mpi_workload.hpp).
 #include "distributed/mpi_workload.hpp"
 
-
 #include "core/synthetic_work.hpp"
 
 #ifndef FRONTSTEAL_DATA_DIR

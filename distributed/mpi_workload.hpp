@@ -18,14 +18,14 @@ namespace frontsteal::mpi {
 
 struct Workload {
   ItemId n = 0;
-  std::string kind;                                             // "synthetic" or "tessellation"
-  std::function<std::uint32_t(int frame, ItemId id)> run;       // executes item id of frame f; its triangles
-  std::function<std::uint64_t(int frame)> serial_triangles;     // the serial loop's count for frame f (rank 0)
+  std::string kind;                                          // "synthetic" or "tessellation"
+  std::function<std::uint32_t(int frame, ItemId id)> run;    // executes item id of frame f; its triangles
+  std::function<std::uint64_t(int frame)> serial_triangles;  // the serial loop's count for frame f (rank 0)
   // Tessellation (empty for synthetic): the scene along frontsteal's default path (tessellate/path_scene.hpp);
   // a rank runs one item at a time, so one worker's scratch serves it.
   tess::PathScene scene;
   std::optional<tess::FrameWorkload> frames;  // over scene
-  std::vector<std::uint64_t> serial;  // per frame, the serial loop's triangles (rank 0)
+  std::vector<std::uint64_t> serial;          // per frame, the serial loop's triangles (rank 0)
 };
 
 // Fills wl (in place: its closures point into it). Rank 0 also runs the serial reference loop.

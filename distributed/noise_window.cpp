@@ -41,8 +41,8 @@ NoiseVerdict NoiseWindow::finish() {
   // Gathered to rank 0 over MPI_COMM_WORLD as plain numbers, not reduced over a node communicator made per
   // window: Open MPI 4.1's ob1 crashed (null communicator in recv_frag_callback_match) when a fresh
   // MPI_COMM_TYPE_SHARED communicator spanned ranks on two hosts over TCP.
-  const RankWindow mine{node_key(), u.self_ticks, u.total_ticks, u.busy_ticks, u.steal_ticks, u.known_ticks,
-                        u.children_ticks, u.wall_s, u.ok ? 1 : 0};
+  const RankWindow mine{node_key(),    u.self_ticks,     u.total_ticks, u.busy_ticks, u.steal_ticks,
+                        u.known_ticks, u.children_ticks, u.wall_s,      u.ok ? 1 : 0};
   int ranks = 1, rank = 0;
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -52,7 +52,8 @@ std::string ProgressChoice::describe() const {
   if (!open_mpi) {
     s << "not Open MPI: its one-sided operations are taken to need the target's progress)";
   } else {
-    s << "osc " << (osc_requested.empty() ? "chosen by Open MPI (sm on one node)" : "requested: " + osc_requested) << ")";
+    s << "osc " << (osc_requested.empty() ? "chosen by Open MPI (sm on one node)" : "requested: " + osc_requested)
+      << ")";
   }
   return s.str();
 }

@@ -92,10 +92,10 @@ class OwnerProgress {
 // osc component was asked for (Open MPI: OMPI_MCA_osc, which mpirun's --mca osc sets) and whether every rank
 // shares one node. Collective over comm.
 struct ProgressChoice {
-  double every_us = -1;      // < 0: off
+  double every_us = -1;  // < 0: off
   bool one_node = false;
-  bool open_mpi = false;     // MPI_Get_library_version starts with "Open MPI"
-  std::string osc_requested; // "" when the launcher did not say
+  bool open_mpi = false;      // MPI_Get_library_version starts with "Open MPI"
+  std::string osc_requested;  // "" when the launcher did not say
   std::string describe() const;
 };
 ProgressChoice resolve_owner_progress(const std::string& option, MPI_Comm comm);

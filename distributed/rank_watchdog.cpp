@@ -41,9 +41,10 @@ void start_watchdog(double limit_s, int rank) {
       const auto last = Clock::time_point(Clock::duration(g_last_progress.load(std::memory_order_relaxed)));
       const double idle = std::chrono::duration<double>(Clock::now() - last).count();
       if (idle > limit_s) {
-        std::fprintf(stderr, "%s: rank %d: WATCHDOG: no progress for %.1f s (frame %d, %s): a rank died or "
-                     "hangs; exiting %d instead of hanging\n", kProgram.data(), rank, idle, g_frame.load(),
-                     g_phase.load(), kWatchdogExitCode);
+        std::fprintf(stderr,
+                     "%s: rank %d: WATCHDOG: no progress for %.1f s (frame %d, %s): a rank died or "
+                     "hangs; exiting %d instead of hanging\n",
+                     kProgram.data(), rank, idle, g_frame.load(), g_phase.load(), kWatchdogExitCode);
         std::fflush(stderr);
         std::_Exit(kWatchdogExitCode);
       }

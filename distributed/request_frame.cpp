@@ -119,11 +119,13 @@ void FrameRunner::serve_requests(RangeList* list, std::size_t* index) {
     std::int32_t frame = 0;
     check_mpi(MPI_Recv(&frame, 1, MPI_INT32_T, st.MPI_SOURCE, kTagRequest, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
               "MPI_Recv");
-    const std::vector<std::uint32_t> reply =
-        list != nullptr ? split_off_share(*list, *index, o_.defect == "request-keeps-share") : std::vector<std::uint32_t>{};
+    const std::vector<std::uint32_t> reply = list != nullptr
+                                                 ? split_off_share(*list, *index, o_.defect == "request-keeps-share")
+                                                 : std::vector<std::uint32_t>{};
     if (!reply.empty()) active_.join();  // A1 on the thief's behalf, before the share leaves (I-T)
-    check_mpi(MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_UINT32_T, st.MPI_SOURCE, kTagReply,
-                       MPI_COMM_WORLD), "MPI_Send");
+    check_mpi(
+        MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_UINT32_T, st.MPI_SOURCE, kTagReply, MPI_COMM_WORLD),
+        "MPI_Send");
     stats_.bytes += 4.0 * static_cast<double>(reply.size());
     stats_.requests_served += 1;
   }

@@ -15,8 +15,8 @@
 namespace frontsteal::mpi::sim {
 namespace {
 
-constexpr double kYieldNs = 1000;          // an idle loop's sched_yield on a loaded core (assumed)
-constexpr double kInstallRetryNs = 500;    // a thief's install waits for its own LockList (held by a thief)
+constexpr double kYieldNs = 1000;        // an idle loop's sched_yield on a loaded core (assumed)
+constexpr double kInstallRetryNs = 500;  // a thief's install waits for its own LockList (held by a thief)
 
 enum class Step : std::uint8_t { kOwner, kRoundStart, kTryVictim, kT1, kT2, kT3, kT4, kInstall, kAwaitReply, kDone };
 
@@ -211,8 +211,8 @@ class Model {
         if (k.front >= k.end) return become_idle(t, r);
         const ItemId id = k.list[k.front++];
         k.executed.push_back(id);
-        const double overhead = s_ == Scheduler::kRma ? lat_.claim + (gated && due ? lat_.progress_call : 0)
-                                                      : (due ? lat_.poll : 0);
+        const double overhead =
+            s_ == Scheduler::kRma ? lat_.claim + (gated && due ? lat_.progress_call : 0) : (due ? lat_.poll : 0);
         k.busy = true;
         k.busy_until = t + overhead + cost(frame_, id);
         return at_time(k.busy_until, r);
@@ -248,8 +248,8 @@ class Model {
         k.mid = defect_ == Defect::kEmptyShare ? end : simulation::steal_mid(k.front_read, end);
         k.old_end = end;
         double c = op(t, current(k), lat_.get, false);  // the entry count
-        c = op(c, current(k), lat_.get, false);          // the entries
-        ++active_;                                       // A1
+        c = op(c, current(k), lat_.get, false);         // the entries
+        ++active_;                                      // A1
         c = op(c, 0, lat_.fetch_op, true);
         k.step = Step::kT3;
         return at_time(c, r);
@@ -265,8 +265,8 @@ class Model {
       }
       case Step::kT4: {
         double c = op(t, current(k), lat_.get, false);  // T4
-        c = op(c, current(k), lat_.get, false);          // T5
-        victim(k).locked = false;                        // L3
+        c = op(c, current(k), lat_.get, false);         // T5
+        victim(k).locked = false;                       // L3
         k.step = Step::kInstall;
         return at_time(op(c, current(k), lat_.fetch_op, true), r);
       }

@@ -13,8 +13,8 @@
 //               fetch-op — each a round trip of its calibrated latency. The victim's End drops when T3
 //               completes; items the victim claimed past mid before then stay with it (the T5 re-read).
 //   request     the owner pays `poll` per item (across nodes: at most every `progress_every`); a request
-//               travels half a ping-pong, waits for the victim's next poll (an idle victim answers at once), the reply (second half of the list, and A1 on
-//               rank 0 paid by the victim) travels the other half.
+//               travels half a ping-pong, waits for the victim's next poll (an idle victim answers at once), the reply
+//               (second half of the list, and A1 on rank 0 paid by the victim) travels the other half.
 //   central     a fetch-and-op on rank 0 per grain of N/(100P) items.
 //   static      round robin, no communication.
 //   termination A3 (a fetch-op read of rank 0's count) before every round of steal attempts; backoff as the
@@ -45,15 +45,15 @@ namespace frontsteal::mpi::sim {
 // Nanoseconds. A one-sided operation's latency is its round trip (operation + MPI_Win_flush) to an attentive
 // target, as --calibrate measures it.
 struct Latencies {
-  std::string source;             // where the numbers come from (file, transport)
+  std::string source;  // where the numbers come from (file, transport)
   double get = 0, put = 0, cas = 0, fetch_op = 0;
-  double ping_pong = 0;           // a 4-byte MPI_Send/MPI_Recv round trip
-  double claim = 0;               // the rma owner's O1-O4
-  double poll = 0;                // the request owner's MPI_Iprobe
-  double progress_call = 0;       // the rma owner's progress call (owner_progress.hpp)
-  double atomic_service = 0;      // time one atomic holds its home rank (see contention above)
+  double ping_pong = 0;       // a 4-byte MPI_Send/MPI_Recv round trip
+  double claim = 0;           // the rma owner's O1-O4
+  double poll = 0;            // the request owner's MPI_Iprobe
+  double progress_call = 0;   // the rma owner's progress call (owner_progress.hpp)
+  double atomic_service = 0;  // time one atomic holds its home rank (see contention above)
   bool needs_target_progress = false;
-  double progress_every = 50000;   // with needs_target_progress: the owner's call/poll interval (auto: 50 us)
+  double progress_every = 50000;  // with needs_target_progress: the owner's call/poll interval (auto: 50 us)
 };
 
 // Reads frontsteal-mpi --calibrate --json output (contents "calibration"); throws naming the file and the
@@ -75,13 +75,13 @@ struct Workload {
 struct Result {
   Scheduler scheduler = Scheduler::kStatic;
   int ranks = 0;
-  double time_ns = 0;          // all frames
-  double work_ns = 0;          // sum of item costs, all frames
-  double efficiency = 0;       // work / (ranks x time)
+  double time_ns = 0;     // all frames
+  double work_ns = 0;     // sum of item costs, all frames
+  double efficiency = 0;  // work / (ranks x time)
   std::uint64_t steals = 0, steal_attempts = 0, remote_operations = 0;
   double mean_steal_ns = 0;
-  bool exactly_once = true;    // the audit
-  std::string audit_failure;   // the first failure, when not
+  bool exactly_once = true;   // the audit
+  std::string audit_failure;  // the first failure, when not
 };
 
 Result simulate(Scheduler s, int ranks, const Workload& w, const Latencies& lat, std::uint64_t seed = 1,

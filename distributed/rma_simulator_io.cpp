@@ -62,10 +62,17 @@ Latencies latencies_from_calibration(const std::string& path) {
 }
 
 report::Json latencies_json(const Latencies& l) {
-  return {{"source", l.source}, {"get_ns", l.get}, {"put_ns", l.put}, {"compare_and_swap_ns", l.cas},
-          {"fetch_and_op_ns", l.fetch_op}, {"ping_pong_ns", l.ping_pong}, {"owner_claim_ns", l.claim},
-          {"request_poll_ns", l.poll}, {"owner_progress_call_ns", l.progress_call},
-          {"atomic_service_ns", l.atomic_service}, {"needs_target_progress", l.needs_target_progress},
+  return {{"source", l.source},
+          {"get_ns", l.get},
+          {"put_ns", l.put},
+          {"compare_and_swap_ns", l.cas},
+          {"fetch_and_op_ns", l.fetch_op},
+          {"ping_pong_ns", l.ping_pong},
+          {"owner_claim_ns", l.claim},
+          {"request_poll_ns", l.poll},
+          {"owner_progress_call_ns", l.progress_call},
+          {"atomic_service_ns", l.atomic_service},
+          {"needs_target_progress", l.needs_target_progress},
           {"progress_every_ns", l.progress_every}};
 }
 
@@ -89,7 +96,8 @@ void write_efficiency_plot(const std::string& dir_name, const report::Json& rows
   gp << "# gnuplot script written by frontsteal-mpi-simulate; run from " << dir_name
      << ": gnuplot simulated-efficiency.gp\n"
      << "set terminal pngcairo size 1100,640 font 'sans,10' noenhanced\nset output 'simulated-efficiency.png'\n"
-     << "set title \"SIMULATED efficiency = work / (ranks x time), not a measurement\\n" << report::gnuplot_text(subtitle) << "\"\n"
+     << "set title \"SIMULATED efficiency = work / (ranks x time), not a measurement\\n"
+     << report::gnuplot_text(subtitle) << "\"\n"
      << "set logscale x 2\nset xlabel 'ranks'\nset ylabel 'efficiency'\nset yrange [0:1.05]\nset grid\n"
      << "set key outside right top\n"
      << "plot for [i=0:" << (order.empty() ? 0 : order.size() - 1) << "] 'simulated-efficiency.dat' index i "

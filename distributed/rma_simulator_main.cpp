@@ -26,15 +26,22 @@ int main(int argc, char** argv) {
                           "predicts each scheduler's efficiency (work / (ranks x time)) with a discrete-event model "
                           "driven by measured latencies (frontsteal-mpi --calibrate --json).",
                           "\nExit status: 0; 1 the model's exactly-once audit failed; 2 bad command line.");
-  cli.app().add_option("--calibration", calibrations, "calibration JSON files (comma list)")->delimiter(',')->required();
-  cli.app().add_option("--ranks", ranks, "rank counts (comma list)")->delimiter(',')->check(CLI::Range(2, 4096))
+  cli.app()
+      .add_option("--calibration", calibrations, "calibration JSON files (comma list)")
+      ->delimiter(',')
+      ->required();
+  cli.app()
+      .add_option("--ranks", ranks, "rank counts (comma list)")
+      ->delimiter(',')
+      ->check(CLI::Range(2, 4096))
       ->capture_default_str();
   cli.option("--items", w.items, "items per frame")->check(CLI::Range(16u, 10000000u));
   cli.option("--work-ns", w.light_ns, "a light item's cost, ns")->check(CLI::Range(0.0, 1e9));
   cli.option("--skew", w.skew, "the moving heavy fifth costs K x")->check(CLI::Range(1u, 10000u));
   cli.option("--frames", w.frames, "frames (lists carry over)")->check(CLI::Range(1, 1000));
   double progress_every_us = 50;
-  cli.option("--progress-every-us", progress_every_us, "over a transport that needs target progress: the owner's "
+  cli.option("--progress-every-us", progress_every_us,
+             "over a transport that needs target progress: the owner's "
              "progress call / request poll interval (frontsteal-mpi --owner-progress; its auto is 50)")
       ->check(CLI::Range(0.0, 1e6));
   cli.option("--json", json, "also write the results as JSON");
@@ -45,9 +52,15 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"none", "skip-reread"}));
   cli.parse(argc, argv);
   try {
-    report::Table t({{"latencies", "latencies", false}, {"scheduler", "scheduler", false}, {"ranks", "ranks"},
-                     {"efficiency", "efficiency (SIMULATED)"}, {"frame_ms", "ms/frame"}, {"steals", "steals"},
-                     {"mean_steal_us", "mean steal us"}, {"remote_ops", "remote ops"}, {"exactly_once", "audit", false}});
+    report::Table t({{"latencies", "latencies", false},
+                     {"scheduler", "scheduler", false},
+                     {"ranks", "ranks"},
+                     {"efficiency", "efficiency (SIMULATED)"},
+                     {"frame_ms", "ms/frame"},
+                     {"steals", "steals"},
+                     {"mean_steal_us", "mean steal us"},
+                     {"remote_ops", "remote ops"},
+                     {"exactly_once", "audit", false}});
     report::Json doc = report::document("frontsteal-mpi-simulate", 1, "simulated", FRONTSTEAL_GIT_COMMIT);
     doc["simulated"] = true;
     doc["workload"] = {{"items", w.items}, {"light_ns", w.light_ns}, {"skew", w.skew}, {"frames", w.frames}};
@@ -58,19 +71,20 @@ int main(int argc, char** argv) {
       lat.progress_every = progress_every_us * 1e3;
       doc["latencies"].push_back(sim::latencies_json(lat));
       const std::string label = lat.needs_target_progress ? "tcp" : "shm";
-      for (sim::Scheduler s : {sim::Scheduler::kRma, sim::Scheduler::kRequest, sim::Scheduler::kCentral,
-                               sim::Scheduler::kStatic}) {
+      for (sim::Scheduler s :
+           {sim::Scheduler::kRma, sim::Scheduler::kRequest, sim::Scheduler::kCentral, sim::Scheduler::kStatic}) {
         for (int p : ranks) {
-          const sim::Result r = sim::simulate(s, p, w, lat, 1,
-                                              defect == "skip-reread" ? sim::Defect::kSkipReread : sim::Defect::kNone);
+          const sim::Result r =
+              sim::simulate(s, p, w, lat, 1, defect == "skip-reread" ? sim::Defect::kSkipReread : sim::Defect::kNone);
           if (!r.exactly_once) {
             std::fprintf(stderr, "frontsteal-mpi-simulate: MODEL AUDIT FAILED: %s, %d ranks, %s: %s\n",
                          sim::to_string(s), p, label.c_str(), r.audit_failure.c_str());
             audit_ok = false;
           }
           t.add_row({label, sim::to_string(s), p, report::Cell::fixed(r.efficiency, 3),
-                     report::Cell::fixed(r.time_ns / w.frames / 1e6, 3), r.steals, report::Cell::fixed(r.mean_steal_ns / 1e3, 1),
-                     r.remote_operations, r.exactly_once ? "passed" : "FAILED"});
+                     report::Cell::fixed(r.time_ns / w.frames / 1e6, 3), r.steals,
+                     report::Cell::fixed(r.mean_steal_ns / 1e3, 1), r.remote_operations,
+                     r.exactly_once ? "passed" : "FAILED"});
         }
       }
     }
@@ -79,14 +93,16 @@ int main(int argc, char** argv) {
     for (const report::Json& l : doc["latencies"]) latencies_text += "  " + l.dump() + "\n";
     const std::string title = "SIMULATED (a discrete-event model, not a measurement): " + std::to_string(w.items) +
                               " items/frame, light " + report::fixed_text(w.light_ns, 0) + " ns, heavy fifth x" +
-                              std::to_string(w.skew) + ", " + std::to_string(w.frames) + " frames\nlatencies used (ns):\n";
+                              std::to_string(w.skew) + ", " + std::to_string(w.frames) +
+                              " frames\nlatencies used (ns):\n";
     std::printf("%s%s%s", title.c_str(), latencies_text.c_str(), t.terminal().c_str());
     if (!json.empty()) report::write_atomically(json, doc.dump(2) + "\n");
     if (!plots.empty()) {
-      sim::write_efficiency_plot(plots, doc["rows"], std::to_string(w.items) + " items/frame, light " +
-                                 report::fixed_text(w.light_ns, 0) + " ns, heavy fifth x" + std::to_string(w.skew) +
-                                 "; tcp = calibration over TCP (owner calls into MPI every " +
-                                 report::fixed_text(progress_every_us, 0) + " us), shm = shared memory");
+      sim::write_efficiency_plot(plots, doc["rows"],
+                                 std::to_string(w.items) + " items/frame, light " + report::fixed_text(w.light_ns, 0) +
+                                     " ns, heavy fifth x" + std::to_string(w.skew) +
+                                     "; tcp = calibration over TCP (owner calls into MPI every " +
+                                     report::fixed_text(progress_every_us, 0) + " us), shm = shared memory");
     }
     if (!markdown.empty()) {
       report::write_atomically(markdown, "# " + title + "\n```\n" + latencies_text + "```\n\n" + t.markdown());

@@ -53,9 +53,9 @@ namespace frontsteal::mpi {
 class RmaActiveCount {
  public:
   explicit RmaActiveCount(RmaWindow& w) : w_(w) {}
-  void join() { w_.fetch_and_op(0, kActive, 1, MPI_SUM); }                    // A1
-  void leave() { w_.fetch_and_op(0, kActive, -1, MPI_SUM); }                  // A2
-  bool all_idle() { return w_.atomic_read(0, kActive) == 0; }     // A3
+  void join() { w_.fetch_and_op(0, kActive, 1, MPI_SUM); }     // A1
+  void leave() { w_.fetch_and_op(0, kActive, -1, MPI_SUM); }   // A2
+  bool all_idle() { return w_.atomic_read(0, kActive) == 0; }  // A3
   std::int32_t value() { return w_.atomic_read(0, kActive); }
   void rearm(std::int32_t ranks) { w_.accumulate_replace(0, kActive, ranks); }  // E4 (rank 0, between frames)
 
@@ -73,17 +73,17 @@ class RmaOwner {
   RmaOwner(RmaWindow& w, int me, bool win_sync_f1 = true) : w_(w), me_(me), win_sync_f1_(win_sync_f1) {}
 
   std::optional<ItemId> try_claim() {
-    w_.local(kTransient).store(1u, std::memory_order_relaxed);                    // O1
-    if (win_sync_f1_) w_.sync();                                                        // F1 (G3)
-    std::atomic_thread_fence(std::memory_order_seq_cst);                               // F1 (CPU order)
-    const std::uint32_t end = w_.local(kEnd).load(std::memory_order_acquire);     // O2
+    w_.local(kTransient).store(1u, std::memory_order_relaxed);                 // O1
+    if (win_sync_f1_) w_.sync();                                               // F1 (G3)
+    std::atomic_thread_fence(std::memory_order_seq_cst);                       // F1 (CPU order)
+    const std::uint32_t end = w_.local(kEnd).load(std::memory_order_acquire);  // O2
     const std::uint32_t f = front_;
     if (f >= end) {
-      w_.local(kTransient).store(0u, std::memory_order_release);                  // O4
+      w_.local(kTransient).store(0u, std::memory_order_release);  // O4
       return std::nullopt;
     }
-    w_.local(kFront).store(f + 1, std::memory_order_release);                     // O3
-    w_.local(kTransient).store(0u, std::memory_order_release);                    // O4
+    w_.local(kFront).store(f + 1, std::memory_order_release);   // O3
+    w_.local(kTransient).store(0u, std::memory_order_release);  // O4
     front_ = f + 1;
     const WinEntry* entries = w_.local_entries();
     while (f >= entry_.flat_end()) entry_ = entries[++entry_index_];
@@ -105,10 +105,10 @@ class RmaOwner {
       flat += r.size();
     }
     w_.local(kEntryCount).store(n, std::memory_order_relaxed);
-    w_.local(kFront).store(0u, std::memory_order_relaxed);                         // I1
-    w_.local(kEnd).store(flat, std::memory_order_release);                         // I2
-    w_.sync();                                                                          // publish (G3)
-    w_.accumulate_replace(me_, kLock, 0u);                                                 // L3
+    w_.local(kFront).store(0u, std::memory_order_relaxed);  // I1
+    w_.local(kEnd).store(flat, std::memory_order_release);  // I2
+    w_.sync();                                              // publish (G3)
+    w_.accumulate_replace(me_, kLock, 0u);                  // L3
     front_ = 0;
     entry_index_ = 0;
     entry_ = n > 0 ? entries[0] : WinEntry{};
@@ -143,31 +143,31 @@ class RmaThief {
   RmaThief(RmaWindow& w, RmaActiveCount& active) : w_(w), active_(active), staging_(w.capacity()) {}
 
   RmaStealOutcome try_steal(int victim, const RmaStealHooks& hooks = {}) {
-    if (w_.atomic_read(victim, kLock) != 0u) return RmaStealOutcome::kLockBusy;   // L1
-    if (w_.compare_and_swap(victim, kLock, 0u, 1u) != 0u) return RmaStealOutcome::kLockBusy;     // L2
-    const std::uint32_t front = w_.get(victim, kFront);                             // T1
-    const std::uint32_t end = w_.get(victim, kEnd);                                 // T2
+    if (w_.atomic_read(victim, kLock) != 0u) return RmaStealOutcome::kLockBusy;               // L1
+    if (w_.compare_and_swap(victim, kLock, 0u, 1u) != 0u) return RmaStealOutcome::kLockBusy;  // L2
+    const std::uint32_t front = w_.get(victim, kFront);                                       // T1
+    const std::uint32_t end = w_.get(victim, kEnd);                                           // T2
     if (front >= end) {
-      w_.accumulate_replace(victim, kLock, 0u);                                            // L3
+      w_.accumulate_replace(victim, kLock, 0u);  // L3
       return RmaStealOutcome::kEmpty;
     }
     mid_ = front + static_cast<std::uint32_t>(items_left_to_victim(end - front));
     end_ = end;
     copy_share(victim);
     if (hooks.force_overlap) await_victim_past_mid(victim, hooks.overlap_timeout);
-    active_.join();                                                                     // A1 (before T3: I-T)
-    w_.put(victim, kEnd, mid_);                                                     // T3 + F2 (flush, G5)
+    active_.join();              // A1 (before T3: I-T)
+    w_.put(victim, kEnd, mid_);  // T3 + F2 (flush, G5)
     std::uint32_t front_after = mid_;
     if (!has(hooks.defects, Defect::kSkipFrontReread)) {
       const auto wait_start = std::chrono::steady_clock::now();
-      for (std::uint32_t spins = 0; w_.get(victim, kTransient) != 0u; ++spins) {   // T4
+      for (std::uint32_t spins = 0; w_.get(victim, kTransient) != 0u; ++spins) {  // T4
         if (spins > 64) std::this_thread::yield();
         ++t4_spins_;
       }
       t4_wait_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
-      front_after = w_.get(victim, kFront);                                         // T5
+      front_after = w_.get(victim, kFront);  // T5
     }
-    w_.accumulate_replace(victim, kLock, 0u);                                              // L3
+    w_.accumulate_replace(victim, kLock, 0u);  // L3
     return keep_unclaimed(front_after);
   }
 
@@ -210,7 +210,7 @@ class RmaThief {
     share_.erase(share_.begin(), share_.begin() + static_cast<std::ptrdiff_t>(whole));
     if (!share_.empty()) share_.front().begin += drop;
     if (share_.empty()) {
-      active_.leave();                                                                  // A2: empty share
+      active_.leave();  // A2: empty share
       return RmaStealOutcome::kSkippedAll;
     }
     return RmaStealOutcome::kStolen;

@@ -70,11 +70,17 @@ struct WinField {
 template <class T>
 MPI_Datatype mpi_datatype() noexcept;
 template <>
-inline MPI_Datatype mpi_datatype<std::uint32_t>() noexcept { return MPI_UINT32_T; }
+inline MPI_Datatype mpi_datatype<std::uint32_t>() noexcept {
+  return MPI_UINT32_T;
+}
 template <>
-inline MPI_Datatype mpi_datatype<std::int32_t>() noexcept { return MPI_INT32_T; }
+inline MPI_Datatype mpi_datatype<std::int32_t>() noexcept {
+  return MPI_INT32_T;
+}
 template <>
-inline MPI_Datatype mpi_datatype<std::uint64_t>() noexcept { return MPI_UINT64_T; }
+inline MPI_Datatype mpi_datatype<std::uint64_t>() noexcept {
+  return MPI_UINT64_T;
+}
 
 inline constexpr WinField<std::uint32_t> kFront{0};
 inline constexpr WinField<std::uint32_t> kTransient{4};
@@ -173,7 +179,9 @@ class RmaWindow {
     return completed(rank, op == MPI_NO_OP ? sizeof(T) : 2 * sizeof(T), found);
   }
   template <class T>
-  T atomic_read(int rank, WinField<T> f) { return fetch_and_op(rank, f, T{}, MPI_NO_OP); }
+  T atomic_read(int rank, WinField<T> f) {
+    return fetch_and_op(rank, f, T{}, MPI_NO_OP);
+  }
   // An atomic write (G4: the word is only ever touched by accumulate operations).
   template <class T>
   void accumulate_replace(int rank, WinField<T> f, T v) {
@@ -184,8 +192,9 @@ class RmaWindow {
   void get_entries(int rank, std::uint32_t first, std::uint32_t count, WinEntry* out) {
     if (count == 0) return;
     const int ints = static_cast<int>(count * 3);
-    check_mpi(MPI_Get(out, ints, MPI_UINT32_T, rank, kEntries + static_cast<MPI_Aint>(first) * 12, ints,
-                      MPI_UINT32_T, win_), "MPI_Get entries");
+    check_mpi(
+        MPI_Get(out, ints, MPI_UINT32_T, rank, kEntries + static_cast<MPI_Aint>(first) * 12, ints, MPI_UINT32_T, win_),
+        "MPI_Get entries");
     completed(rank, count * sizeof(WinEntry), 0);
   }
   void flush(int rank) { check_mpi(MPI_Win_flush(rank, win_), "MPI_Win_flush"); }

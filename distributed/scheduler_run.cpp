@@ -23,9 +23,10 @@ bool audit_frame(const std::string& name, const Workload& wl, int f, const std::
     if (total[id] != 1 && wrong++ == 0) first = id;
   }
   if (wrong > 0) {
-    std::fprintf(stderr, "%s: AUDIT FAILED: scheduler %s, frame %d: item %u executed %u times (%llu items not "
-                 "executed exactly once)\n", kProgram.data(), name.c_str(), f, first, total[first],
-                 static_cast<unsigned long long>(wrong));
+    std::fprintf(stderr,
+                 "%s: AUDIT FAILED: scheduler %s, frame %d: item %u executed %u times (%llu items not "
+                 "executed exactly once)\n",
+                 kProgram.data(), name.c_str(), f, first, total[first], static_cast<unsigned long long>(wrong));
     return false;
   }
   const std::uint64_t serial = wl.serial_triangles(f);
@@ -61,7 +62,7 @@ bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int 
     // Between frames (every rank is past the previous frame's done barrier): install, re-arm, reset.
     if (name == "rma") owner.install(list);
     if (rank == 0) {
-      runner.active().rearm(ranks);                    // E4
+      runner.active().rearm(ranks);                            // E4
       win.accumulate_replace(0, kNextItem, std::uint64_t{0});  // central counter
     }
     win.sync();

@@ -90,8 +90,8 @@ WindowSelfTest run_window_self_test(RmaWindow& win, MPI_Comm comm) {
     }
   }
   MPI_Barrier(comm);
-  if (me == 0) expect.equal("the active count after every rank's MPI_SUM", 0, win.atomic_read(0, kActive),
-                            kActiveBase + ranks);
+  if (me == 0)
+    expect.equal("the active count after every rank's MPI_SUM", 0, win.atomic_read(0, kActive), kActiveBase + ranks);
 
   // Everything back to zero, as the window was created.
   win.local(kFront).store(0u, std::memory_order_relaxed);

@@ -47,13 +47,9 @@ struct CalibrationTally {
   }
   // The verdicts that contradict the truth: for A/A, faster or slower; for a slowdown, faster; for a speed-up,
   // slower.
-  std::size_t false_verdicts() const {
-    return true_change > 0 ? faster : true_change < 0 ? slower : faster + slower;
-  }
+  std::size_t false_verdicts() const { return true_change > 0 ? faster : true_change < 0 ? slower : faster + slower; }
   // The verdict the planted change should get beyond the margin (slower / faster; A/A: equivalent).
-  std::size_t right_verdicts() const {
-    return true_change > 0 ? slower : true_change < 0 ? faster : equivalent;
-  }
+  std::size_t right_verdicts() const { return true_change > 0 ? slower : true_change < 0 ? faster : equivalent; }
   double rate(std::size_t count) const { return experiments ? static_cast<double>(count) / experiments : 0.0; }
   double mean_effect_pct() const {
     const std::size_t decided = experiments - too_few;

@@ -38,22 +38,26 @@ double probe_ns_per_million_steps(std::uint64_t steps) {
   const auto t0 = std::chrono::steady_clock::now();
   // The chains' values "change" here and are "used" before t1, so the compiler can neither start the loop
   // before t0 nor finish it after t1, nor drop it (the "memory" clobbers keep the order with the clock calls).
-  asm volatile("" : "+r"(x[0]), "+r"(x[1]), "+r"(x[2]), "+r"(x[3]), "+r"(x[4]), "+r"(x[5]), "+r"(x[6]), "+r"(x[7])
-               : : "memory");
+  asm volatile(""
+               : "+r"(x[0]), "+r"(x[1]), "+r"(x[2]), "+r"(x[3]), "+r"(x[4]), "+r"(x[5]), "+r"(x[6]), "+r"(x[7])
+               :
+               : "memory");
   for (std::uint64_t i = 0; i < steps; ++i) {
     for (std::uint64_t& v : x) {
       v = v * 6364136223846793005ull + 1442695040888963407ull;
       v ^= v >> 29;
     }
   }
-  asm volatile("" : : "r"(x[0]), "r"(x[1]), "r"(x[2]), "r"(x[3]), "r"(x[4]), "r"(x[5]), "r"(x[6]), "r"(x[7])
+  asm volatile(""
+               :
+               : "r"(x[0]), "r"(x[1]), "r"(x[2]), "r"(x[3]), "r"(x[4]), "r"(x[5]), "r"(x[6]), "r"(x[7])
                : "memory");
   const auto t1 = std::chrono::steady_clock::now();
   return std::chrono::duration<double, std::nano>(t1 - t0).count() * 1e6 / static_cast<double>(steps);
 }
 
-SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std::vector<double>& probe, double threshold,
-                                const std::vector<PassUsage>& passes) {
+SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std::vector<double>& probe,
+                                double threshold, const std::vector<PassUsage>& passes) {
   SpreadDiagnosis d;
   d.serial_spread = spread_of(serial_ms);
   if (probe.size() != serial_ms.size() || probe.empty()) {
@@ -82,29 +86,35 @@ SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std:
       if (p.wall_ms > 0) off_cpu = std::max(off_cpu, 1 - (p.user_ms + p.system_ms) / p.wall_ms);
     }
     char buf[240];
-    std::snprintf(buf, sizeof buf, "%ld page faults, %.0f ms system time, %ld blocking waits in all passes; at most "
-                  "%ld involuntary switches and %.1f %% of the wall time off the CPU in one", faults, system_ms, blocked,
-                  preempted, 100 * std::max(0.0, off_cpu));
+    std::snprintf(buf, sizeof buf,
+                  "%ld page faults, %.0f ms system time, %ld blocking waits in all passes; at most "
+                  "%ld involuntary switches and %.1f %% of the wall time off the CPU in one",
+                  faults, system_ms, blocked, preempted, 100 * std::max(0.0, off_cpu));
     work_says = buf;
   }
   if (d.serial_spread <= threshold) {
     d.line = "CPU speed probe: " + probe_says;
   } else if (d.probe_follows_passes) {
     d.line = "the CPU itself changed speed between repeats: " + probe_says + ", most of the serial loop's " +
-             percent(d.serial_spread) + "; /proc cannot see this (a lower host clock or a busy SMT sibling on the host)";
+             percent(d.serial_spread) +
+             "; /proc cannot see this (a lower host clock or a busy SMT sibling on the host)";
   } else if (d.same_work_on_cpu) {
     d.line = "every serial pass did the same work on its CPU (" + work_says + ") and still spread " +
-             percent(d.serial_spread) + ": the same instructions took longer — the hardware's speed or state (a lower "
+             percent(d.serial_spread) +
+             ": the same instructions took longer — the hardware's speed or state (a lower "
              "clock, a busy SMT sibling, caches or memory shared with other tenants, or caches left cold by the run "
-             "before), not different work by the program; " + probe_says;
+             "before), not different work by the program; " +
+             probe_says;
   } else if (d.cpu_varied) {
     d.line = "the CPU's speed changed between repeats, but it does not explain the serial loop's " +
-             percent(d.serial_spread) + ": " + probe_says + "; the rest is memory, caches, the program, or time off the CPU" +
+             percent(d.serial_spread) + ": " + probe_says +
+             "; the rest is memory, caches, the program, or time off the CPU" +
              (work_says.empty() ? "" : " (" + work_says + ")");
   } else {
     d.line = "the CPU's speed did not change at the edges of the passes (" + probe_says +
              "): the serial loop's own time varied — memory, caches, the program or time off the CPU, not the core's "
-             "clock" + (work_says.empty() ? "" : " (" + work_says + ")");
+             "clock" +
+             (work_says.empty() ? "" : " (" + work_says + ")");
   }
   return d;
 }

@@ -40,20 +40,20 @@ inline constexpr std::uint64_t kProbeSteps = 1'000'000;
 double probe_ns_per_million_steps(std::uint64_t steps = kProbeSteps);
 
 struct SpreadDiagnosis {
-  double serial_spread = 0;  // max / min − 1 of the serial passes
-  double probe_spread = 0;   // max / min − 1 of the probe, one value per pass
-  double correlation = 0;    // Pearson r between a pass's time and its probe (0 with fewer than 3 passes)
-  bool cpu_varied = false;   // the probe spread by more than the threshold
+  double serial_spread = 0;           // max / min − 1 of the serial passes
+  double probe_spread = 0;            // max / min − 1 of the probe, one value per pass
+  double correlation = 0;             // Pearson r between a pass's time and its probe (0 with fewer than 3 passes)
+  bool cpu_varied = false;            // the probe spread by more than the threshold
   bool probe_follows_passes = false;  // ... by at least half the serial spread, r >= 0.7 over >= 3 passes: the
                                       // core's speed explains the spread
   bool same_work_on_cpu = false;      // every pass did the same work on its CPU (pass_usage.hpp)
-  std::string line;          // one sentence for the report
+  std::string line;                   // one sentence for the report
 };
 
 // `serial_ms[k]` is the k-th serial pass, `probe[k]` the probe around it (same length), `passes[k]` what the
 // pass's thread did (empty: not measured); `threshold` is the spread above which a change counts (the noise
 // monitor's --noise-spread).
-SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std::vector<double>& probe, double threshold,
-                                const std::vector<PassUsage>& passes = {});
+SpreadDiagnosis diagnose_spread(const std::vector<double>& serial_ms, const std::vector<double>& probe,
+                                double threshold, const std::vector<PassUsage>& passes = {});
 
 }  // namespace frontsteal::noise

@@ -29,9 +29,9 @@
 namespace frontsteal::interference {
 
 struct CoRunnerOptions {
-  double duty = 0.5;        // share of each period spent spinning, (0, 1]
-  int period_us = 10'000;   // 10 ms: a scheduler time slice or so, short against a frame
-  int cpu = -1;             // pin the child to this CPU (-1: not pinned)
+  double duty = 0.5;       // share of each period spent spinning, (0, 1]
+  int period_us = 10'000;  // 10 ms: a scheduler time slice or so, short against a frame
+  int cpu = -1;            // pin the child to this CPU (-1: not pinned)
 };
 
 class CoRunner {

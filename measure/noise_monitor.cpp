@@ -6,7 +6,6 @@
 
 #include <unistd.h>
 
-
 #include <algorithm>
 #include <charconv>
 #include <chrono>
@@ -65,7 +64,8 @@ ProcSample parse_sample(std::string_view proc_stat, std::string_view self_stat, 
 
 ProcSample sample_now(pid_t known) {
   const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-  ProcSample s = parse_sample(read_proc_file("/proc/stat"), read_proc_file("/proc/self/stat"), read_proc_file("/proc/loadavg"), now);
+  ProcSample s = parse_sample(read_proc_file("/proc/stat"), read_proc_file("/proc/self/stat"),
+                              read_proc_file("/proc/loadavg"), now);
   if (known > 0) s.known_ticks = interference::process_ticks(known);
   s.children_ticks = children_ticks(::getpid(), known);
   return s;
@@ -131,7 +131,7 @@ Usage usage_between(const ProcSample& a, const ProcSample& b) {
   u.busy_ticks = delta(a.busy_ticks, b.busy_ticks);
   u.steal_ticks = delta(a.steal_ticks, b.steal_ticks);
   u.self_ticks = delta(a.self_ticks, b.self_ticks);
-  u.known_ticks = delta(a.known_ticks, b.known_ticks);  // a co-runner reaped in the window counts 0, not less
+  u.known_ticks = delta(a.known_ticks, b.known_ticks);           // a co-runner reaped in the window counts 0, not less
   u.children_ticks = delta(a.children_ticks, b.children_ticks);  // likewise a child that exited
   return u;
 }

@@ -37,15 +37,15 @@
 namespace frontsteal::noise {
 
 struct ProcSample {
-  bool ok = false;                 // every file parsed
-  std::uint64_t total_ticks = 0;   // all columns of the "cpu" line
-  std::uint64_t busy_ticks = 0;    // user + nice + system + irq + softirq (guest time is inside user)
+  bool ok = false;                // every file parsed
+  std::uint64_t total_ticks = 0;  // all columns of the "cpu" line
+  std::uint64_t busy_ticks = 0;   // user + nice + system + irq + softirq (guest time is inside user)
   std::uint64_t steal_ticks = 0;
-  std::uint64_t self_ticks = 0;    // this process: utime + stime
-  std::uint64_t known_ticks = 0;   // the known co-runner's utime + stime (0 when none, or gone)
+  std::uint64_t self_ticks = 0;      // this process: utime + stime
+  std::uint64_t known_ticks = 0;     // the known co-runner's utime + stime (0 when none, or gone)
   std::uint64_t children_ticks = 0;  // our other live child processes' utime + stime
-  double load1 = 0;                // 1-minute load average
-  double wall_s = 0;               // steady clock when sampled
+  double load1 = 0;                  // 1-minute load average
+  double wall_s = 0;                 // steady clock when sampled
 };
 
 // Parses the text of /proc/stat, /proc/self/stat and /proc/loadavg; ok = false if any is malformed.
@@ -75,7 +75,7 @@ Usage usage_between(const ProcSample& before, const ProcSample& after);
 struct Thresholds {
   double other_share = 0.10;  // others' CPU, as a share of the machine
   double steal_share = 0.05;
-  double spread = 0.05;       // serial loop's repeats: max / min − 1
+  double spread = 0.05;  // serial loop's repeats: max / min − 1
 };
 inline constexpr std::uint64_t kMinOtherTicks = 5;  // 50 ms at the usual 100 Hz
 

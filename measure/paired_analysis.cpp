@@ -92,7 +92,7 @@ struct Clusters {
   std::vector<std::size_t> of;  // [round]: its cluster, 0 .. count-1
   std::size_t count = 0;
   double absorbed = 0;
-  bool trivial = true;          // every round its own cluster
+  bool trivial = true;  // every round its own cluster
 };
 
 Clusters cluster_rounds(const std::vector<RoundPair>& kept, const std::vector<std::size_t>& block) {
@@ -208,7 +208,8 @@ LogInterval huber_fit(const std::vector<RoundPair>& pairs, bool with_covariate, 
     }
     const bool settled = std::fabs(new_scale - scale) < 1e-9 * new_scale;
     scale = new_scale;
-    for (std::size_t i = 0; i < n; ++i) w[i] = std::fabs(e[i]) <= huber_k * scale ? 1.0 : huber_k * scale / std::fabs(e[i]);
+    for (std::size_t i = 0; i < n; ++i)
+      w[i] = std::fabs(e[i]) <= huber_k * scale ? 1.0 : huber_k * scale / std::fabs(e[i]);
     if (settled) break;
   }
   double estimate = 0, mean_c = 0;

@@ -100,8 +100,8 @@ enum class Estimator { kHuber, kMean };
 const char* to_string(Estimator e) noexcept;
 
 struct Settings {
-  double margin = 0.02;      // m: equivalence margin, as a fraction of time
-  double confidence = 0.95;  // of every interval
+  double margin = 0.02;          // m: equivalence margin, as a fraction of time
+  double confidence = 0.95;      // of every interval
   bool adjust_for_probe = true;  // the verdict from the covariate-adjusted interval (when it can be computed)
   Estimator estimator = Estimator::kHuber;
 };
@@ -123,15 +123,15 @@ struct LogInterval {
 
 struct PairedResult {
   std::size_t rounds = 0, blocks = 0;
-  std::size_t clusters = 0;  // groups of rounds that shared an instance (= rounds when none is named)
-  LogInterval raw, adjusted;  // adjusted.valid: the probe was measured for every round and df allows it
-  double probe_slope = 0;        // theta
-  double variance_removed = 0;   // 1 - adjusted.sd^2 / raw.sd^2 (negative: the covariate cost degrees of freedom)
-  bool uses_adjusted = false;    // the verdict comes from `adjusted`
+  std::size_t clusters = 0;     // groups of rounds that shared an instance (= rounds when none is named)
+  LogInterval raw, adjusted;    // adjusted.valid: the probe was measured for every round and df allows it
+  double probe_slope = 0;       // theta
+  double variance_removed = 0;  // 1 - adjusted.sd^2 / raw.sd^2 (negative: the covariate cost degrees of freedom)
+  bool uses_adjusted = false;   // the verdict comes from `adjusted`
   Decision decision = Decision::kTooFewRounds;
-  bool differs = false;          // the chosen interval excludes 0
-  double rounds_needed = 0;      // to decide at this noise (0: decided; +inf: the estimate sits on the margin)
-  double mde_pct = 0;            // smallest change this run finds with 80 % power (two-sided, at `confidence`)
+  bool differs = false;      // the chosen interval excludes 0
+  double rounds_needed = 0;  // to decide at this noise (0: decided; +inf: the estimate sits on the margin)
+  double mde_pct = 0;        // smallest change this run finds with 80 % power (two-sided, at `confidence`)
   double margin = 0;
   const LogInterval& chosen() const { return uses_adjusted ? adjusted : raw; }
 };

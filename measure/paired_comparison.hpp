@@ -116,7 +116,7 @@ inline std::vector<double> paired_ratios(const std::vector<double>& candidate, c
 }
 
 struct Comparison {
-  Interval ratio;        // of candidate / reference times
+  Interval ratio;  // of candidate / reference times
   Verdict verdict = Verdict::kTooFewRepeats;
   double effect_pct = 0;  // (median ratio − 1) × 100: change in time, negative = candidate faster
   std::size_t pairs = 0;

@@ -25,22 +25,22 @@
 namespace frontsteal::measure {
 
 struct SpeedModel {
-  double drift_per_s = 0;                  // d s / dt: the steady drift (0.001 = 0.1 % slower each second)
-  double step_at_s = -1, step = 0;         // s jumps by `step` at that time (negative time: none)
+  double drift_per_s = 0;                          // d s / dt: the steady drift (0.001 = 0.1 % slower each second)
+  double step_at_s = -1, step = 0;                 // s jumps by `step` at that time (negative time: none)
   double burst_at_s = -1, burst_s = 0, burst = 0;  // s is raised by `burst` during [at, at + burst_s)
-  double wander_sd = 0, wander_tau_s = 1;  // the fast wander's stationary spread and time constant
-  double run_noise_sd = 0.01;              // each run's own noise
-  double outlier_rate = 0, outlier_sd = 0;  // a run hit by a change of speed inside it: extra noise, this often
-  double probe_noise_sd = 0.005;           // the probe's own noise
-  double probe_tracking = 1.0;             // k: the share of s the probe sees
-  double instance_sd = 0;                  // each instance's fixed offset
-  std::size_t rounds_per_instance = 0;     // an arm's fresh instance every this many rounds (0: one per run)
+  double wander_sd = 0, wander_tau_s = 1;          // the fast wander's stationary spread and time constant
+  double run_noise_sd = 0.01;                      // each run's own noise
+  double outlier_rate = 0, outlier_sd = 0;         // a run hit by a change of speed inside it: extra noise, this often
+  double probe_noise_sd = 0.005;                   // the probe's own noise
+  double probe_tracking = 1.0;                     // k: the share of s the probe sees
+  double instance_sd = 0;                          // each instance's fixed offset
+  std::size_t rounds_per_instance = 0;             // an arm's fresh instance every this many rounds (0: one per run)
 };
 
 struct SyntheticRun {
   std::vector<std::vector<double>> time, probe;  // [arm][round], seconds and the probe's reading
-  std::vector<int> block;                         // [round]
-  std::vector<int> instance;                      // [round]: every arm's instance id (-1: instances not modelled)
+  std::vector<int> block;                        // [round]
+  std::vector<int> instance;                     // [round]: every arm's instance id (-1: instances not modelled)
 };
 
 // `rounds` rounds of the arms (costs in seconds; round k covers block k % blocks, whose cost is scaled by

@@ -34,9 +34,7 @@ class ThreadPinning {
     return pthread_setaffinity_np(pthread_self(), sizeof one, &one) == 0;
   }
   // Gives the calling thread every CPU the process had at construction again.
-  bool unpin_this_thread() const {
-    return pthread_setaffinity_np(pthread_self(), sizeof allowed_, &allowed_) == 0;
-  }
+  bool unpin_this_thread() const { return pthread_setaffinity_np(pthread_self(), sizeof allowed_, &allowed_) == 0; }
   std::size_t cpu_count() const noexcept { return cpus_.size(); }
   // The CPU worker w is pinned to (-1 when none is known): where --interference pinned puts its co-runner.
   int cpu_of(unsigned w) const noexcept { return cpus_.empty() ? -1 : cpus_[w % cpus_.size()]; }

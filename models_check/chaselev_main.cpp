@@ -18,7 +18,8 @@ namespace report = frontsteal::report;
 
 namespace {
 
-constexpr const char* kDescription = R"(Model-checks the Chase-Lev work-stealing deque (core/chase_lev_deque.hpp, the baseline scheduler's deque) with
+constexpr const char* kDescription =
+    R"(Model-checks the Chase-Lev work-stealing deque (core/chase_lev_deque.hpp, the baseline scheduler's deque) with
 Relacy. Checks: every pushed item is returned exactly once (by the owner's take, a steal, or a final drain), no
 data race on an item's payload (written before push, read by whoever gets the item), nothing lost. Runs Le et
 al.'s orders (ChaseLev: must pass) and three planted defects (Broken:TakeWithoutFence, Broken:TakeLastWithoutCas,
@@ -57,9 +58,9 @@ std::string preamble(const SearchBudget& o) {
         "checked (or, on a failure, executions until it). Scenarios (models_check/chaselev_scenarios.hpp; owner ops: "
         "P push, T take; then the harness drains the deque):\n\n";
   for (const ChaseLevSpec& s : chaselev_scenarios()) {
-    md << "- `" << s.name << "` (capacity " << s.capacity << ", owner `" << s.owner_ops << "`, " << s.thieves
-       << " thie" << (s.thieves == 1 ? "f" : "ves") << " × " << s.steal_attempts << " steal"
-       << (s.steal_attempts == 1 ? "" : "s") << "): " << s.checks << "\n";
+    md << "- `" << s.name << "` (capacity " << s.capacity << ", owner `" << s.owner_ops << "`, " << s.thieves << " thie"
+       << (s.thieves == 1 ? "f" : "ves") << " × " << s.steal_attempts << " steal" << (s.steal_attempts == 1 ? "" : "s")
+       << "): " << s.checks << "\n";
   }
   if (o.full) md << "A full search (every schedule Relacy can produce, same cap) follows for every cell.\n";
   return md.str();
@@ -81,7 +82,8 @@ int main(int argc, char** argv) {
     CheckerReport results(kProgram, o.out, /*histories=*/true);
     bool ok = true;
     const report::Table verdicts = verdict_table(o, ok);
-    results.markdown = preamble(o) + "\n## Verdicts\n\n" + verdicts.markdown() +
+    results.markdown =
+        preamble(o) + "\n## Verdicts\n\n" + verdicts.markdown() +
         "\nA negative control must fail somewhere; where one passes a scenario, that scenario cannot reach its defect. "
         "Broken:TakeWithoutFence passes `last_element` as core/chase_lev_deque.hpp predicts: with one element both "
         "sides go through a CAS on top and exactly one wins, so the take fence K3 matters only when the owner takes "
@@ -90,10 +92,12 @@ int main(int argc, char** argv) {
     results.json["mutants"] = report::Json::array();
     if (o.mutants) {
       const report::Table kills = kill_table(o, ok);
-      results.markdown += "\n## Kill matrix: every one-step weakening of ChaseLev\n\nEach mutant: a random search (" +
+      results.markdown +=
+          "\n## Kill matrix: every one-step weakening of ChaseLev\n\nEach mutant: a random search (" +
           std::to_string(o.mutant_iterations) + " iterations) of every scenario" +
           (o.bound > 0 ? ", then, if nothing was found, the context-bound search (bound " + std::to_string(o.bound) +
-                             ") of every scenario" : std::string()) +
+                             ") of every scenario"
+                       : std::string()) +
           ". A survivor must be listed in chaselev_survivors.hpp with its reason (repeated below).\n\n" +
           kills.markdown();
       results.json["mutants"] = kills.json();

@@ -14,10 +14,10 @@ namespace frontsteal::model {
 
 struct ChaseLevSpec {
   std::string_view name;
-  std::string_view checks;     // one line: the race this scenario exists for
-  std::uint32_t capacity;      // power of two
-  std::string_view owner_ops;  // 'P' push the next item, 'T' take
-  std::uint32_t thieves;       // 1 or 2
+  std::string_view checks;       // one line: the race this scenario exists for
+  std::uint32_t capacity;        // power of two
+  std::string_view owner_ops;    // 'P' push the next item, 'T' take
+  std::uint32_t thieves;         // 1 or 2
   std::uint32_t steal_attempts;  // per thief
 };
 
@@ -26,11 +26,11 @@ inline constexpr std::uint32_t kMaxChaseLevItems = 8;
 inline const std::vector<ChaseLevSpec>& chaselev_scenarios() {
   static const std::vector<ChaseLevSpec> all{
       {"owner_vs_thief",
-       "owner pushes 3 and takes, one thief steals twice; capacity 2, so push wraps onto slots a thief may read",
-       2, "PPTPT", 1, 2},
+       "owner pushes 3 and takes, one thief steals twice; capacity 2, so push wraps onto slots a thief may read", 2,
+       "PPTPT", 1, 2},
       {"owner_vs_two_thieves",
-       "two elements, two thieves with one steal each against the owner's take: the store-buffering handshake",
-       4, "PPT", 2, 1},
+       "two elements, two thieves with one steal each against the owner's take: the store-buffering handshake", 4,
+       "PPT", 2, 1},
       {"last_element", "one element: the owner's take (CAS K6) against one thief's steal (CAS S5)", 2, "PT", 1, 1},
   };
   return all;

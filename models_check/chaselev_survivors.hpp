@@ -25,7 +25,8 @@ inline const std::vector<ExpectedSurvivor>& expected_survivors() {
        "in the paper (proved for C11, whose fence rules were weaker); not a proof of redundancy"},
       {"ChaseLev[S1:relaxed]",
        "genuinely unnecessary on the C++ model: the seq_cst fence S2 right after S1 is also an acquire fence, so a "
-       "relaxed S1 that reads a release store still synchronizes with it (fence-acquire). Kept acquire as in the paper"},
+       "relaxed S1 that reads a release store still synchronizes with it (fence-acquire). Kept acquire as in the "
+       "paper"},
       {"ChaseLev[S5:acq_rel]",
        "nothing found; as for K6: the S2 fence orders the thief against the owner's K3, and the CAS needs only "
        "atomicity. Kept seq_cst as in the paper; not a proof of redundancy"},

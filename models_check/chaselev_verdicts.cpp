@@ -85,8 +85,12 @@ report::Table verdict_table(const SearchBudget& o, bool& ok) {
                               {table_of<BrokenTakeWithoutFence>(), false},
                               {table_of<BrokenTakeLastWithoutCas>(), false},
                               {table_of<BrokenPushWithoutRelease>(), false}};
-  report::Table t({{"policy", "policy", false}, {"expected_pass", "expected", false}, {"scenario", "scenario", false},
-                   {"search", "search", false}, {"verdict", "verdict", false}, {"executions", "executions"},
+  report::Table t({{"policy", "policy", false},
+                   {"expected_pass", "expected", false},
+                   {"scenario", "scenario", false},
+                   {"search", "search", false},
+                   {"verdict", "verdict", false},
+                   {"executions", "executions"},
                    {"seconds", "s"}});
   for (const Row& row : rows) {
     progress(kProgram, o.quiet, row.table.name + " …");
@@ -102,20 +106,23 @@ report::Table verdict_table(const SearchBudget& o, bool& ok) {
       if (row.must_pass && !scenario_passed) ok = false;
       if (!o.quiet) print_cells(spec, cells);
       for (const SearchCell& c : cells) {
-        const std::string search = std::string(name(c.kind)) +
+        const std::string search =
+            std::string(name(c.kind)) +
             (c.kind == SearchKind::kContextBound ? " (bound " + std::to_string(o.bound) + ")" : std::string());
         t.add_row({row.table.name, expected, report::Cell::shown_as("`" + std::string(spec.name) + "`", spec.name),
-                   search, report::Cell::shown_as(c.describe(), {{"verdict", c.describe()}, {"passed", c.passed()},
-                                                                 {"capped", c.result.capped}}),
+                   search,
+                   report::Cell::shown_as(
+                       c.describe(), {{"verdict", c.describe()}, {"passed", c.passed()}, {"capped", c.result.capped}}),
                    c.executions(), report::Cell::shown_as(seconds_text(c.result.seconds), c.result.seconds)});
       }
     }
     if (row_passed != row.must_pass) {
       ok = false;
-      t.add_row({row.table.name, report::Cell::shown_as(std::string("**UNEXPECTED**: ") + (row_passed ? "passed" : "failed"),
-                                                        "unexpected"),
-                 report::Cell::empty(), report::Cell::empty(), report::Cell::empty(), report::Cell::empty(),
-                 report::Cell::empty()});
+      t.add_row(
+          {row.table.name,
+           report::Cell::shown_as(std::string("**UNEXPECTED**: ") + (row_passed ? "passed" : "failed"), "unexpected"),
+           report::Cell::empty(), report::Cell::empty(), report::Cell::empty(), report::Cell::empty(),
+           report::Cell::empty()});
     }
   }
   return t;

@@ -29,9 +29,9 @@ int CheckerReport::close(std::string_view stem, bool all_as_expected, bool quiet
   const double run_seconds = seconds();
   json["all_as_expected"] = all_as_expected;
   json["seconds"] = run_seconds;
-  markdown += "\n" + std::string(all_as_expected ? "Every verdict as expected." : "**Some verdicts were not as expected.**") +
-              " Run time " + std::to_string(static_cast<int>(run_seconds)) +
-              " s. Failing executions' histories: histories/.\n";
+  markdown +=
+      "\n" + std::string(all_as_expected ? "Every verdict as expected." : "**Some verdicts were not as expected.**") +
+      " Run time " + std::to_string(static_cast<int>(run_seconds)) + " s. Failing executions' histories: histories/.\n";
   write(stem);
   std::cout << markdown;
   if (!quiet) std::cerr << program_ << ": wrote " << out_ << "/" << stem << ".{md,json}\n";

@@ -27,7 +27,8 @@ std::string preamble(const Options& o) {
          std::to_string(random_iterations(o)) + " iterations; searches:" + searches + "; execution depth limit " +
          std::to_string(o.depth) + "; spin bound " + std::to_string(o.spin_bound) + " (frame waits " +
          std::to_string(o.spin_bound + 1) + "); tree searches stop at a safety cap of " +
-         std::to_string(execution_cap(o)) + " executions.\n\n"
+         std::to_string(execution_cap(o)) +
+         " executions.\n\n"
          "**Bounds.** Relacy keeps a few stores per atomic and never produces load buffering: a pass is a bounded "
          "search, not a proof. The context-bound (and full) searches run each scenario as a finite program: every "
          "wait and idle round may fail at most the spin bound's number of times (one more for frame waits), and an "

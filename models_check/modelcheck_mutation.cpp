@@ -19,7 +19,7 @@ struct Kill {
   Verdict verdict = Verdict::kPass;
   std::uint64_t iterations = 0;
   std::string search;
-  bool capped = false;  // some search of this mutant stopped at the safety cap (its verdict is not complete)
+  bool capped = false;         // some search of this mutant stopped at the safety cap (its verdict is not complete)
   std::uint64_t explored = 0;  // executions of every search run against the mutant
   double seconds = 0;
 };
@@ -84,7 +84,8 @@ std::string explain_survivor(const Kill& k, const PolicyTable& base, const std::
   }
   const Kill in_minimal = kill_mutant(Mutant{s, k.mutant.from, k.mutant.to, weakened_minimal}, scens, o);
   if (in_minimal.killed) {
-    return "covered by Fenced's stronger orders elsewhere; needed in Minimal (killed there by " + in_minimal.by_scenario + ")";
+    return "covered by Fenced's stronger orders elsewhere; needed in Minimal (killed there by " +
+           in_minimal.by_scenario + ")";
   }
   explained = false;
   return "SURVIVOR not explained: a missing scenario";
@@ -95,8 +96,12 @@ std::string explain_survivor(const Kill& k, const PolicyTable& base, const std::
 ReportSection kill_matrix_section(const Options& o, const std::vector<const ScenarioSpec*>& scens, bool& all_expected,
                                   std::chrono::steady_clock::time_point started) {
   const PolicyTable base = *policy_by_name(o.mutants);
-  report::Table t({{"site", "site", false}, {"mutant", "mutant", false}, {"by", "killed by", false},
-                   {"verdict", "verdict", false}, {"search", "search", false}, {"executions", "executions"},
+  report::Table t({{"site", "site", false},
+                   {"mutant", "mutant", false},
+                   {"by", "killed by", false},
+                   {"verdict", "verdict", false},
+                   {"search", "search", false},
+                   {"executions", "executions"},
                    {"note", "note", false}});
   report::Json details = report::Json::array();
   for (const Mutant& m : one_step_mutants(base)) {
@@ -106,26 +111,36 @@ ReportSection kill_matrix_section(const Options& o, const std::vector<const Scen
     const std::string note = k.killed ? "" : explain_survivor(k, base, scens, o, explained);
     all_expected = all_expected && explained;
     if (!o.quiet) {
-      std::fprintf(stderr, "[%7.1fs] mutant %-4s %-9s -> %-9s %s\n", seconds_since(started),
-                   std::string(info(s).label).c_str(), k.mutant.from.c_str(), k.mutant.to.c_str(),
-                   k.killed ? ("killed by " + k.by_scenario + " after " + std::to_string(k.iterations) + " executions").c_str()
-                            : note.c_str());
+      std::fprintf(
+          stderr, "[%7.1fs] mutant %-4s %-9s -> %-9s %s\n", seconds_since(started), std::string(info(s).label).c_str(),
+          k.mutant.from.c_str(), k.mutant.to.c_str(),
+          k.killed ? ("killed by " + k.by_scenario + " after " + std::to_string(k.iterations) + " executions").c_str()
+                   : note.c_str());
     }
     const std::uint64_t executions = k.killed ? k.iterations : k.explored;
-    t.add_row({site_text(s), k.mutant.from + " → " + k.mutant.to,
-               k.killed ? k.by_scenario : "—", k.killed ? std::string(name(k.verdict)) : "survived", k.search,
-               report::Cell::shown_as(std::to_string(executions) + (k.killed || !k.capped ? "" : " (capped)"), executions),
-               note});
-    details.push_back({{"site", info(s).label}, {"name", info(s).name}, {"from", k.mutant.from}, {"to", k.mutant.to},
-                       {"killed", k.killed}, {"seconds", k.seconds}});
+    t.add_row(
+        {site_text(s), k.mutant.from + " → " + k.mutant.to, k.killed ? k.by_scenario : "—",
+         k.killed ? std::string(name(k.verdict)) : "survived", k.search,
+         report::Cell::shown_as(std::to_string(executions) + (k.killed || !k.capped ? "" : " (capped)"), executions),
+         note});
+    details.push_back({{"site", info(s).label},
+                       {"name", info(s).name},
+                       {"from", k.mutant.from},
+                       {"to", k.mutant.to},
+                       {"killed", k.killed},
+                       {"seconds", k.seconds}});
   }
   ReportSection out;
-  out.markdown = "## Mutation kill matrix: one-step weakenings of " + base.name + "\n\nEvery labelled site weakened "
-                 "one step (seq_cst → acq_rel → acquire/release → relaxed; a fence removed), every scenario run against "
-                 "each mutant with the searches " + mutant_search_text(o) + " in that order (random: " +
-                 std::to_string(mutant_iterations(o)) + " iterations; boundN: the complete context-bound search of the "
-                 "spin-bounded program; boundN:T only on scenarios of at most T threads) until one kills it. "
-                 "Executions: until the kill, or all a survivor ran.\n\n" + t.markdown() + "\n";
+  out.markdown =
+      "## Mutation kill matrix: one-step weakenings of " + base.name +
+      "\n\nEvery labelled site weakened "
+      "one step (seq_cst → acq_rel → acquire/release → relaxed; a fence removed), every scenario run against "
+      "each mutant with the searches " +
+      mutant_search_text(o) + " in that order (random: " + std::to_string(mutant_iterations(o)) +
+      " iterations; boundN: the complete context-bound search of the "
+      "spin-bounded program; boundN:T only on scenarios of at most T threads) until one kills it. "
+      "Executions: until the kill, or all a survivor ran.\n\n" +
+      t.markdown() + "\n";
   report::Json rows = t.json();
   for (std::size_t i = 0; i < rows.size(); ++i) {
     for (auto it = details[i].begin(); it != details[i].end(); ++it) rows[i][it.key()] = it.value();
@@ -143,8 +158,11 @@ ReportSection certificate_section(const Options& o, const std::vector<const Scen
     if (info(s).protocol != Protocol::kStealing) continue;
     orders.add_row({site_text(s), table_cell(minimal, s)});
   }
-  report::Table t({{"site", "site", false}, {"weakening", "weakening", false}, {"by", "killed by", false},
-                   {"verdict", "verdict", false}, {"executions", "executions"}});
+  report::Table t({{"site", "site", false},
+                   {"weakening", "weakening", false},
+                   {"by", "killed by", false},
+                   {"verdict", "verdict", false},
+                   {"executions", "executions"}});
   const auto mutants = one_step_mutants(minimal);
   certified = true;
   for (const Mutant& m : mutants) {
@@ -164,9 +182,10 @@ ReportSection certificate_section(const Options& o, const std::vector<const Scen
   out.markdown = "## Certificate of Minimal\n\nMinimal's orders (core/policies.hpp):\n\n" + orders.markdown() +
                  "\nEvery one-step weakening of Minimal, and whether a scenario kills it (all must be killed; that "
                  "Minimal itself passes every scenario is in the verdict table above); searches per weakening, in "
-                 "order up to the first kill: " + mutant_search_text(o) + ":\n\n" + t.markdown() + "\n**" +
-                 (certified ? "Certified" : "NOT certified") + "**: " + std::to_string(mutants.size()) +
-                 " one-step weakenings, " + (certified ? "all" : "not all") + " killed.\n\n";
+                 "order up to the first kill: " +
+                 mutant_search_text(o) + ":\n\n" + t.markdown() + "\n**" + (certified ? "Certified" : "NOT certified") +
+                 "**: " + std::to_string(mutants.size()) + " one-step weakenings, " + (certified ? "all" : "not all") +
+                 " killed.\n\n";
   out.json = {{"policy", "Minimal"}, {"weakenings", t.json()}, {"certified", certified}};
   return out;
 }

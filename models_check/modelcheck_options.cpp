@@ -12,7 +12,8 @@ namespace frontsteal::model::stealing {
 
 namespace {
 
-constexpr const char* kDescription = R"(Model-checks the load-stealing protocol of core/ with Relacy: every scenario of models_check/scenarios.hpp
+constexpr const char* kDescription =
+    R"(Model-checks the load-stealing protocol of core/ with Relacy: every scenario of models_check/scenarios.hpp
 under every chosen policy, with random and context-bound searches; optionally a memory-order mutation kill
 matrix and the certificate of the Minimal policy. Writes markdown and JSON results; exits 1 on any verdict
 that differs from the expected-verdict table (models_check/expected_verdicts.hpp), 2 for bad usage.)";
@@ -40,9 +41,14 @@ CLI::Validator search_validator() {
 }  // namespace
 
 std::vector<PolicyTable> known_policies() {
-  return {table_of<SeqCst>(),   table_of<Paper>(),   table_of<Fenced>(),
-          table_of<Asymmetric>(), table_of<Minimal>(), table_of<BrokenSkipsReread>(),
-          table_of<BrokenNoTransient>(), table_of<BrokenJoinsLate>(),
+  return {table_of<SeqCst>(),
+          table_of<Paper>(),
+          table_of<Fenced>(),
+          table_of<Asymmetric>(),
+          table_of<Minimal>(),
+          table_of<BrokenSkipsReread>(),
+          table_of<BrokenNoTransient>(),
+          table_of<BrokenJoinsLate>(),
           table_of<BrokenShareLowerBound>()};
 }
 
@@ -61,32 +67,51 @@ Options parse(int argc, char** argv) {
   std::vector<std::string> policies{"all"}, scenario_list{"all"};
   report::CommandLine cli(kProgram, kDescription, kFooter);
   cli.option("--tier", o.tier, "fast or slow (see Tiers)")->check(CLI::IsMember({"fast", "slow"}));
-  cli.app().add_option("--policy", policies, "comma-separated policy names, or all")
-      ->delimiter(',')->check(CLI::IsMember(policy_names).description(""));
-  cli.app().add_option("--scenario", scenario_list, "comma-separated scenario names, or all")
-      ->delimiter(',')->check(CLI::IsMember(scenario_names).description(""));
-  auto* search = cli.app().add_option("--search", o.searches, "comma-separated searches (see Searches); the slow "
-                                      "tier's default is random,bound1,bound2,bound3:2")
-                     ->delimiter(',')->check(search_validator());
-  cli.app().add_option("--iterations", o.iterations, "random-search iterations (overrides the tier)")
+  cli.app()
+      .add_option("--policy", policies, "comma-separated policy names, or all")
+      ->delimiter(',')
+      ->check(CLI::IsMember(policy_names).description(""));
+  cli.app()
+      .add_option("--scenario", scenario_list, "comma-separated scenario names, or all")
+      ->delimiter(',')
+      ->check(CLI::IsMember(scenario_names).description(""));
+  auto* search = cli.app()
+                     .add_option("--search", o.searches,
+                                 "comma-separated searches (see Searches); the slow "
+                                 "tier's default is random,bound1,bound2,bound3:2")
+                     ->delimiter(',')
+                     ->check(search_validator());
+  cli.app()
+      .add_option("--iterations", o.iterations, "random-search iterations (overrides the tier)")
       ->check(CLI::PositiveNumber);
-  cli.app().add_option("--cap", o.cap, "safety cap: executions after which a context-bound or full search stops "
-                       "(overrides the tier: fast 1e7, slow 1e8); results say \"capped\" when a search stopped there")
+  cli.app()
+      .add_option("--cap", o.cap,
+                  "safety cap: executions after which a context-bound or full search stops "
+                  "(overrides the tier: fast 1e7, slow 1e8); results say \"capped\" when a search stopped there")
       ->check(CLI::PositiveNumber);
   cli.option("--mutants", o.mutants, "also run the kill matrix of every one-step weakening of this policy")
       ->check(CLI::IsMember(std::vector<std::string>(policy_names.begin() + 1, policy_names.end())).description(""));
-  cli.app().add_option("--mutant-iterations", o.mutant_iterations,
-                       "random-search iterations per mutant and scenario (overrides the tier)")->check(CLI::PositiveNumber);
-  cli.app().add_option("--mutant-search", o.mutant_searches, "searches run against each mutant, in order, up to the "
-                       "first kill [default: fast random,bound1:2; slow random,bound1]")
-      ->delimiter(',')->check(search_validator());
+  cli.app()
+      .add_option("--mutant-iterations", o.mutant_iterations,
+                  "random-search iterations per mutant and scenario (overrides the tier)")
+      ->check(CLI::PositiveNumber);
+  cli.app()
+      .add_option("--mutant-search", o.mutant_searches,
+                  "searches run against each mutant, in order, up to the "
+                  "first kill [default: fast random,bound1:2; slow random,bound1]")
+      ->delimiter(',')
+      ->check(search_validator());
   cli.flag("--certify", o.certify, "also certify Minimal: every one-step weakening must be killed");
-  cli.option("--derive-minimal", o.derive_base, "greedily weaken this policy while every scenario passes; print the "
-             "resulting table")->check(CLI::IsMember(std::vector<std::string>(policy_names.begin() + 1, policy_names.end())).description(""));
+  cli.option("--derive-minimal", o.derive_base,
+             "greedily weaken this policy while every scenario passes; print the "
+             "resulting table")
+      ->check(CLI::IsMember(std::vector<std::string>(policy_names.begin() + 1, policy_names.end())).description(""));
   bool no_verdicts = false;
   cli.flag("--no-verdicts", no_verdicts, "skip the policy x scenario verdict table");
-  cli.option("--spin-bound", o.spin_bound, "tree searches: failed iterations allowed per wait or idle round before "
-             "the execution is discarded (0: unbounded, the searches then hit the cap)")->check(CLI::Range(0u, 16u));
+  cli.option("--spin-bound", o.spin_bound,
+             "tree searches: failed iterations allowed per wait or idle round before "
+             "the execution is discarded (0: unbounded, the searches then hit the cap)")
+      ->check(CLI::Range(0u, 16u));
   cli.option("--depth", o.depth, "Relacy execution_depth_limit")->check(CLI::PositiveNumber);
   cli.out(o.out);
   cli.quiet(o.quiet);
@@ -94,7 +119,8 @@ Options parse(int argc, char** argv) {
   o.verdicts = !no_verdicts;
   auto chosen = [](const std::vector<std::string>& names, const std::vector<std::string>& all) {
     return std::find(names.begin(), names.end(), "all") != names.end()
-               ? std::vector<std::string>(all.begin() + 1, all.end()) : names;
+               ? std::vector<std::string>(all.begin() + 1, all.end())
+               : names;
   };
   o.policies = chosen(policies, policy_names);
   if (std::find(scenario_list.begin(), scenario_list.end(), "all") == scenario_list.end()) o.scenarios = scenario_list;
@@ -111,7 +137,8 @@ std::uint64_t mutant_iterations(const Options& o) {
 
 bool applies(const std::string& search, const ScenarioSpec& scenario) {
   const auto colon = search.find(':');
-  return colon == std::string::npos || scenario.threads() <= static_cast<unsigned>(std::stoul(search.substr(colon + 1)));
+  return colon == std::string::npos ||
+         scenario.threads() <= static_cast<unsigned>(std::stoul(search.substr(colon + 1)));
 }
 
 SearchConfig config_for(const std::string& search, std::uint64_t iterations, const Options& o) {

@@ -24,7 +24,8 @@ VerdictCell check_cell(const PolicyTable& policy, const ScenarioSpec& scenario, 
   cell.scenario = std::string(scenario.name);
   cell.mode = mode;
   const Expectation expect = expected_verdict(policy, scenario, mode);
-  for (std::size_t i = 0; i < expect.accepted.size(); ++i) cell.expected += (i ? "|" : "") + std::string(name(expect.accepted[i]));
+  for (std::size_t i = 0; i < expect.accepted.size(); ++i)
+    cell.expected += (i ? "|" : "") + std::string(name(expect.accepted[i]));
   current_table() = policy;
   for (const auto& search : o.searches) {
     if (!applies(search, scenario)) continue;
@@ -83,8 +84,12 @@ std::vector<VerdictCell> run_verdicts(const Options& o, const std::vector<const 
 }
 
 ReportSection verdict_section(const Options& o, const std::vector<VerdictCell>& cells) {
-  report::Table t({{"policy", "policy", false}, {"check", "check", false}, {"scenario", "scenario", false},
-                   {"verdict", "verdict", false}, {"expected", "expected", false}, {"searches", "searches", false}});
+  report::Table t({{"policy", "policy", false},
+                   {"check", "check", false},
+                   {"scenario", "scenario", false},
+                   {"verdict", "verdict", false},
+                   {"expected", "expected", false},
+                   {"searches", "searches", false}});
   for (const VerdictCell& c : cells) {
     std::string shown = (c.searches.empty() ? std::string("—") : std::string(name(c.verdict))) +
                         (c.detail.empty() ? "" : (c.searches.empty() ? " " : ": ") + c.detail) +
@@ -94,18 +99,23 @@ ReportSection verdict_section(const Options& o, const std::vector<VerdictCell>& 
     for (const auto& sr : c.searches) {
       searches_text += (searches_text.empty() ? "" : "; ") + sr.search + " " + search_summary(sr.result) + " " +
                        report::fixed_text(sr.result.seconds, 2) + " s";
-      searches.push_back({{"search", sr.search}, {"verdict", name(sr.result.verdict)}, {"executions", sr.result.iterations},
-                          {"completed", sr.result.completed}, {"discarded", sr.result.discarded},
-                          {"spin_bound", sr.result.spin_bound}, {"capped", sr.result.capped},
+      searches.push_back({{"search", sr.search},
+                          {"verdict", name(sr.result.verdict)},
+                          {"executions", sr.result.iterations},
+                          {"completed", sr.result.completed},
+                          {"discarded", sr.result.discarded},
+                          {"spin_bound", sr.result.spin_bound},
+                          {"capped", sr.result.capped},
                           {"seconds", sr.result.seconds}});
     }
     t.add_row({c.policy, check_name(c.mode), c.scenario, report::Cell::shown_as(shown, name(c.verdict)), c.expected,
                report::Cell::shown_as(searches_text, searches)});
   }
   ReportSection out;
-  out.markdown = "## Verdicts: policy × scenario\n\nEach cell: verdict (as expected?), then per search: executions "
-                 "explored and seconds. Expected verdicts are data: models_check/expected_verdicts.hpp.\n\n" +
-                 t.markdown() + "\n";
+  out.markdown =
+      "## Verdicts: policy × scenario\n\nEach cell: verdict (as expected?), then per search: executions "
+      "explored and seconds. Expected verdicts are data: models_check/expected_verdicts.hpp.\n\n" +
+      t.markdown() + "\n";
   out.json = t.json();
   for (std::size_t i = 0; i < cells.size(); ++i) {
     out.json[i]["detail"] = cells[i].detail;
@@ -114,8 +124,11 @@ ReportSection verdict_section(const Options& o, const std::vector<VerdictCell>& 
   // Paper's duplicate, as a readable history.
   for (const VerdictCell& c : cells) {
     if (c.policy == "Paper" && c.verdict == Verdict::kDuplicate && c.scenario == "edge_one_item") {
-      out.markdown += "### Paper's duplicate (scenario " + c.scenario + ")\n\nThe failing execution replayed with "
-                      "history: `" + c.history_file + "` (next to this file). Read it for the interleaving: the owner's "
+      out.markdown += "### Paper's duplicate (scenario " + c.scenario +
+                      ")\n\nThe failing execution replayed with "
+                      "history: `" +
+                      c.history_file +
+                      "` (next to this file). Read it for the interleaving: the owner's "
                       "store of ListTransient and the thief's store of End both sit unseen while each thread loads the "
                       "other's variable.\n\n";
       std::ifstream h(std::filesystem::path(o.out) / c.history_file);

@@ -83,9 +83,9 @@ struct ProtocolSuite : rl::test_suite<ProtocolSuite<Threads, Mode>, Threads> {
 
   const ScenarioSpec& spec = *suite_context().scenario;
   std::unique_ptr<Workers> core;
-  rl::var<int> payload[kMaxScenarioItems];                     // exactly-once mode: touched by each run
+  rl::var<int> payload[kMaxScenarioItems];                      // exactly-once mode: touched by each run
   rl::atomic<int> runs[kMaxScenarioFrames][kMaxScenarioItems];  // runs of each item in each frame
-  rl::var<int> frame_input[kMaxScenarioFrames];                // caller -> workers (E1 -> E2)
+  rl::var<int> frame_input[kMaxScenarioFrames];                 // caller -> workers (E1 -> E2)
 
   bool collapsed = false;  // past the execution cap: this execution does nothing
 

@@ -24,7 +24,8 @@ namespace report = frontsteal::report;
 namespace {
 
 constexpr const char* kProgram = "frontsteal-modelcheck-publication";
-constexpr const char* kDescription = R"(Model-checks greedy rendering's publication of per-component triangles and the reclamation of the buffers the
+constexpr const char* kDescription =
+    R"(Model-checks greedy rendering's publication of per-component triangles and the reclamation of the buffers the
 pusher may still draw (core/component_publication.hpp) with Relacy. Checks: no torn component, no use of a slot
 after its reuse (a data race on the triangles), no component going back in time, the last frame published at
 the end, no deadlock. Runs the sound policy (Publication) and two planted defects (Broken:ReuseWithoutGrace,
@@ -49,10 +50,12 @@ Options parse(int argc, char** argv) {
   o.out = "out/modelcheck-publication";
   CheckerCommandLine cli(kProgram, kDescription, kFooter, o, "also a context-bound search with this bound, 0: none");
   cli.full("also the full search (every interleaving within the spin bound)");
-  cli.cli().option("--mutant-bound", o.mutant_bound, "context-bound search for each mutant after its random search, 0: none")
+  cli.cli()
+      .option("--mutant-bound", o.mutant_bound, "context-bound search for each mutant after its random search, 0: none")
       ->check(CLI::Range(0u, 4u));
-  cli.cap("safety net: a tree search that explores more executions than this is reported as capped, and a capped "
-          "search fails the run");
+  cli.cap(
+      "safety net: a tree search that explores more executions than this is reported as capped, and a capped "
+      "search fails the run");
   cli.parse(argc, argv);
   return o;
 }
@@ -130,7 +133,9 @@ report::Table verdict_table(const Options& o, bool& ok, std::vector<SearchCell>&
   const std::vector<Row> rows{{table_of<PublicationOrders>(), true},
                               {table_of<BrokenReuseWithoutGrace>(), false},
                               {table_of<BrokenPublishEachSurface>(), false}};
-  report::Table t({{"policy", "policy", false}, {"expected_pass", "expected", false}, {"verdict", "verdict", false},
+  report::Table t({{"policy", "policy", false},
+                   {"expected_pass", "expected", false},
+                   {"verdict", "verdict", false},
                    {"executions", "executions explored (random + tree, discarded included)"}});
   for (const Row& row : rows) {
     progress(kProgram, o.quiet, row.table.name + " …");
@@ -147,16 +152,21 @@ report::Table verdict_table(const Options& o, bool& ok, std::vector<SearchCell>&
 }
 
 report::Table search_table(const std::vector<SearchCell>& cells) {
-  report::Table t({{"scenario", "scenario", false}, {"search", "search", false}, {"executions", "executions", false},
-                   {"seconds", "seconds"}, {"verdict", "verdict", false}});
+  report::Table t({{"scenario", "scenario", false},
+                   {"search", "search", false},
+                   {"executions", "executions", false},
+                   {"seconds", "seconds"},
+                   {"verdict", "verdict", false}});
   for (const SearchCell& c : cells) {
     const std::string search(name(c.result.kind));
-    t.add_row({c.scenario,
-               search + (c.result.kind == SearchKind::kContextBound ? " " + std::to_string(c.result.bound) : std::string()),
-               report::Cell::shown_as(search_summary(c.result),
-                                      {{"iterations", c.result.iterations}, {"completed", c.result.completed},
-                                       {"discarded", c.result.discarded}, {"capped", c.result.capped}}),
-               report::Cell::fixed(c.result.seconds, 2), name(c.result.verdict)});
+    t.add_row(
+        {c.scenario,
+         search + (c.result.kind == SearchKind::kContextBound ? " " + std::to_string(c.result.bound) : std::string()),
+         report::Cell::shown_as(search_summary(c.result), {{"iterations", c.result.iterations},
+                                                           {"completed", c.result.completed},
+                                                           {"discarded", c.result.discarded},
+                                                           {"capped", c.result.capped}}),
+         report::Cell::fixed(c.result.seconds, 2), name(c.result.verdict)});
   }
   return t;
 }
@@ -171,7 +181,8 @@ report::Table kill_table(const Options& o, bool& ok) {
     const bool killed = !out.scenario.empty();
     ok = ok && killed;
     t.add_row({site_text(m.site), m.from, m.to,
-               report::Cell::shown_as(killed ? describe(out) : "**survived**", killed ? report::Json(describe(out)) : nullptr),
+               report::Cell::shown_as(killed ? describe(out) : "**survived**",
+                                      killed ? report::Json(describe(out)) : nullptr),
                out.executions});
   }
   return t;
@@ -187,7 +198,8 @@ int main(int argc, char** argv) {
     std::ostringstream md;
     md << "# Publication and reclamation: Relacy verdicts (measured)\n\n"
        << "core/component_publication.hpp under Relacy; " << o.iterations << " random iterations"
-       << (o.bound > 0 ? ", then the complete context-bound search (bound " + std::to_string(o.bound) + ")" : std::string())
+       << (o.bound > 0 ? ", then the complete context-bound search (bound " + std::to_string(o.bound) + ")"
+                       : std::string())
        << (o.full ? ", then the complete full search" : "")
        << " per policy and scenario; tree searches under the spin bound (each wait fails at most once, frame-long "
           "waits twice; longer executions are discarded, models_check/relacy_backend.hpp). Scenarios "
@@ -196,8 +208,9 @@ int main(int argc, char** argv) {
     std::vector<SearchCell> sound_cells;
     const report::Table verdicts = verdict_table(o, ok, sound_cells);
     const report::Table searches = search_table(sound_cells);
-    md << "\n## Verdicts\n\n" << verdicts.markdown()
-       << "\n## Every search of Publication (executions explored to completion, time)\n\n" << searches.markdown();
+    md << "\n## Verdicts\n\n"
+       << verdicts.markdown() << "\n## Every search of Publication (executions explored to completion, time)\n\n"
+       << searches.markdown();
     results.json["verdicts"] = verdicts.json();
     results.json["searches"] = searches.json();
     results.json["mutants"] = report::Json::array();
@@ -207,7 +220,8 @@ int main(int argc, char** argv) {
          << o.mutant_iterations << " random iterations, then "
          << (o.mutant_bound > 0 ? "the complete context-bound search (bound " + std::to_string(o.mutant_bound) + ")"
                                 : std::string("no tree search"))
-         << " per scenario, up to the first failure.\n\n" << kills.markdown();
+         << " per scenario, up to the first failure.\n\n"
+         << kills.markdown();
       results.json["mutants"] = kills.json();
     }
     results.markdown = md.str();

@@ -14,7 +14,7 @@ namespace frontsteal::model {
 
 struct PublicationSpec {
   std::string_view name;
-  std::string_view checks;                      // one line: the property this scenario exists for
+  std::string_view checks;                             // one line: the property this scenario exists for
   std::vector<std::vector<std::uint32_t>> components;  // per component: the tessellator (0 or 1) of each surface
   std::uint32_t slots;
   std::uint32_t frames;
@@ -27,12 +27,24 @@ inline constexpr std::uint32_t kMaxPublicationSurfaces = 2;  // per component
 
 inline const std::vector<PublicationSpec>& publication_scenarios() {
   static const std::vector<PublicationSpec> all{
-      {"two_slots_reuse", "two slots: every frame after the second reuses a slot the pusher may hold",
-       {{0, 1}}, 2, 3, 3},
-      {"three_slots_two_components", "three slots, two components (one split, one whole): no torn component",
-       {{0, 1}, {0}}, 3, 3, 2},
-      {"pusher_gone", "the pusher stops after one update: the driver still finds free slots (no deadlock)",
-       {{1, 0}}, 2, 3, 1},
+      {"two_slots_reuse",
+       "two slots: every frame after the second reuses a slot the pusher may hold",
+       {{0, 1}},
+       2,
+       3,
+       3},
+      {"three_slots_two_components",
+       "three slots, two components (one split, one whole): no torn component",
+       {{0, 1}, {0}},
+       3,
+       3,
+       2},
+      {"pusher_gone",
+       "the pusher stops after one update: the driver still finds free slots (no deadlock)",
+       {{1, 0}},
+       2,
+       3,
+       1},
   };
   return all;
 }

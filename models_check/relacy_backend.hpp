@@ -20,20 +20,18 @@
 //   Every wait and poll of the protocol reaches this backend through one of two hooks: spin_pause(site, n)
 //   after the n+1-th failed iteration of a loop (T4 await ListTransient, A3 idle-round poll, L1/L2 owner's
 //   lock_spinning; D1, the publication driver's wait for the pusher), and wait_while_equal (E2/E6 frame
-//   waits); the publication harness's own frame waits call failed_iteration directly (publication_suite.cpp). With SpinBound::k = K > 0 a loop may fail K
-//   times; the execution in which it would fail a K+1-th time is DISCARDED: the thread leaves its body at
-//   once (longjmp to the suite's thread(), which set the landing point: ProtocolSuite, PublicationSuite,
-//   ChaseLevSuite), every other thread leaves at its
-//   next backend call, and the harness skips the end-of-execution checks and counts the execution as
-//   discarded. A discarded execution's prefix is still a real execution prefix: a failure Relacy reports in
-//   it (a duplicate, a data race) is real.
-//   Why no bug class is lost: a failed iteration only reads (T4, E2, E6, A3) or takes and releases a lock
-//   it found free, and restores every value it wrote (L1-L3 around an empty or busy victim); its reads see
-//   no new value, so it is invisible to every other thread. An execution in which a loop fails more often
-//   than K therefore has the same reads-from relation on its effectful events as the execution in which the
-//   other threads' steps between the redundant iterations ran first and the loop failed at most K times,
-//   and the checker explores that one. What the bound gives up is liveness: a thread that would wait
-//   forever is discarded, not reported, so the tree searches check safety only. The random search runs
+//   waits); the publication harness's own frame waits call failed_iteration directly (publication_suite.cpp). With
+//   SpinBound::k = K > 0 a loop may fail K times; the execution in which it would fail a K+1-th time is DISCARDED: the
+//   thread leaves its body at once (longjmp to the suite's thread(), which set the landing point: ProtocolSuite,
+//   PublicationSuite, ChaseLevSuite), every other thread leaves at its next backend call, and the harness skips the
+//   end-of-execution checks and counts the execution as discarded. A discarded execution's prefix is still a real
+//   execution prefix: a failure Relacy reports in it (a duplicate, a data race) is real. Why no bug class is lost: a
+//   failed iteration only reads (T4, E2, E6, A3) or takes and releases a lock it found free, and restores every value
+//   it wrote (L1-L3 around an empty or busy victim); its reads see no new value, so it is invisible to every other
+//   thread. An execution in which a loop fails more often than K therefore has the same reads-from relation on its
+//   effectful events as the execution in which the other threads' steps between the redundant iterations ran first and
+//   the loop failed at most K times, and the checker explores that one. What the bound gives up is liveness: a thread
+//   that would wait forever is discarded, not reported, so the tree searches check safety only. The random search runs
 //   the unbounded program (SpinBound off) and still reports a livelock when an execution exceeds Relacy's
 //   depth limit; every tree search must also complete at least one execution, or the cell fails as vacuous.
 //   One caveat with an idle round: a round whose steal came out empty after lowering a victim's End
@@ -75,8 +73,8 @@ struct Boxed {
 // thread, so plain globals are coherent with the interleaving; every suite's before() re-arms it.
 struct SpinBound {
   static constexpr unsigned kMaxThreads = 8;
-  unsigned k = 0;          // failed iterations allowed per wait; 0: unbounded (random search)
-  bool discarded = false;  // this execution exceeded the bound somewhere
+  unsigned k = 0;                   // failed iterations allowed per wait; 0: unbounded (random search)
+  bool discarded = false;           // this execution exceeded the bound somewhere
   std::jmp_buf exits[kMaxThreads];  // landing point of each thread body (set by ProtocolSuite::thread)
 
   // Leaves the current thread's body: the execution is discarded.

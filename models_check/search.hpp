@@ -27,9 +27,9 @@ struct SearchConfig {
   // Tree searches: failed iterations allowed per wait before the execution is discarded (relacy_backend.hpp,
   // SPIN BOUND). 0: unbounded. The random search always runs unbounded.
   unsigned spin_bound = 1;
-  unsigned depth_limit = 20000;       // Relacy's execution_depth_limit (scheduling points per execution)
-  std::string history_path;           // on failure, replay the failing execution and write its history here
-  bool relacy_progress = false;       // let Relacy print its own progress (percent of the search) to stderr
+  unsigned depth_limit = 20000;  // Relacy's execution_depth_limit (scheduling points per execution)
+  std::string history_path;      // on failure, replay the failing execution and write its history here
+  bool relacy_progress = false;  // let Relacy print its own progress (percent of the search) to stderr
 };
 
 // kEarlyQuit: a worker stopped looking for work (read the active count 0 at A3) while an item of the frame
@@ -61,16 +61,16 @@ constexpr std::string_view name(SearchKind k) {
 
 struct SearchResult {
   Verdict verdict = Verdict::kPass;
-  std::string relacy_result;   // Relacy's own name for the result
+  std::string relacy_result;              // Relacy's own name for the result
   SearchKind kind = SearchKind::kRandom;  // the search that produced it
   unsigned bound = 0;                     // its context bound (context-bound searches)
-  std::uint64_t iterations = 0;  // executions explored (until the failure, if any)
-  std::uint64_t completed = 0;   // tree searches: executions run to the end and checked
-  std::uint64_t discarded = 0;   // tree searches: executions discarded by the spin bound (not checked)
-  unsigned spin_bound = 0;       // the bound the search ran under (0: unbounded)
-  bool capped = false;           // the search hit SearchConfig::execution_cap: not exhaustive within its bound
+  std::uint64_t iterations = 0;           // executions explored (until the failure, if any)
+  std::uint64_t completed = 0;            // tree searches: executions run to the end and checked
+  std::uint64_t discarded = 0;            // tree searches: executions discarded by the spin bound (not checked)
+  unsigned spin_bound = 0;                // the bound the search ran under (0: unbounded)
+  bool capped = false;                    // the search hit SearchConfig::execution_cap: not exhaustive within its bound
   double seconds = 0;
-  std::string detail;            // e.g. "item 1 ran twice in frame 1"
+  std::string detail;  // e.g. "item 1 ran twice in frame 1"
 };
 
 // Runs `scenario` under current_table() (set it first).

@@ -36,7 +36,8 @@ double frame_time(const std::string& name, WorkerId workers, ItemId items, int f
   auto item = [&](ItemId id, WorkerId w) {
     if (item_spin_ns > 0) {
       const auto until = Clock::now() + spin;
-      while (Clock::now() < until) {}
+      while (Clock::now() < until) {
+      }
     }
     sink[w * 8] += id;
   };
@@ -56,7 +57,8 @@ double serial_spin_time(ItemId items, double item_spin_ns, int frames) {
     const auto t0 = Clock::now();
     for (ItemId i = 0; i < items; ++i) {
       const auto until = Clock::now() + spin;
-      while (Clock::now() < until) {}
+      while (Clock::now() < until) {
+      }
     }
     v.push_back(ns_since(t0));
   }
@@ -93,14 +95,16 @@ double ping_pong_ns() {
   std::atomic<int> ball{0};
   std::thread other([&] {
     for (int i = 0; i < kRounds; ++i) {
-      while (ball.load(std::memory_order::acquire) != 2 * i + 1) {}
+      while (ball.load(std::memory_order::acquire) != 2 * i + 1) {
+      }
       ball.store(2 * i + 2, std::memory_order::release);
     }
   });
   const auto t0 = Clock::now();
   for (int i = 0; i < kRounds; ++i) {
     ball.store(2 * i + 1, std::memory_order::release);
-    while (ball.load(std::memory_order::acquire) != 2 * i + 2) {}
+    while (ball.load(std::memory_order::acquire) != 2 * i + 2) {
+    }
   }
   const double ns = ns_since(t0);
   other.join();
@@ -137,7 +141,8 @@ double lock_wake_latency_ns(int rounds) {
   std::vector<double> latency;
   std::thread waiter([&] {
     for (int r = 0; r < rounds; ++r) {
-      while (round.load(std::memory_order::acquire) != r) {}
+      while (round.load(std::memory_order::acquire) != r) {
+      }
       m.lock();
       const auto now = Clock::now().time_since_epoch().count();
       latency.push_back(static_cast<double>(now - unlocked_at.load(std::memory_order::acquire)));
@@ -151,7 +156,8 @@ double lock_wake_latency_ns(int rounds) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
     unlocked_at.store(Clock::now().time_since_epoch().count(), std::memory_order::release);
     m.unlock();
-    while (round.load(std::memory_order::acquire) != -1 - r - 1) {}
+    while (round.load(std::memory_order::acquire) != -1 - r - 1) {
+    }
   }
   waiter.join();
   static_assert(std::is_same_v<Clock::duration, std::chrono::nanoseconds>);
@@ -352,17 +358,26 @@ Overheads read_overheads(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw std::runtime_error("cannot open calibration " + file.string());
   Overheads o;
-  std::map<std::string, double*> numbers = {
-      {"static.item_ns", &o.static_list.item_ns}, {"static.frame_fixed_ns", &o.static_list.frame_fixed_ns},
-      {"static.second_worker_ns", &o.static_list.second_worker_ns}, {"queue.item_ns", &o.queue.item_ns},
-      {"queue.frame_fixed_ns", &o.queue.frame_fixed_ns}, {"queue.second_worker_ns", &o.queue.second_worker_ns},
-      {"stealing.item_ns", &o.stealing.item_ns}, {"stealing.frame_fixed_ns", &o.stealing.frame_fixed_ns},
-      {"stealing.second_worker_ns", &o.stealing.second_worker_ns}, {"chase_lev.item_ns", &o.chase_lev.item_ns},
-      {"chase_lev.frame_fixed_ns", &o.chase_lev.frame_fixed_ns},
-      {"chase_lev.second_worker_ns", &o.chase_lev.second_worker_ns},
-      {"line_transfer_ns", &o.line_transfer_ns}, {"lock_uncontended_ns", &o.lock_uncontended_ns},
-      {"lock_handoff_ns", &o.lock_handoff_ns}, {"fence_ns", &o.fence_ns}, {"idle_round_ns", &o.idle_round_ns},
-      {"lock_wake_ns", &o.lock_wake_ns}, {"wake_skew_ns", &o.wake_skew_ns}, {"affinity_penalty", &o.affinity_penalty}};
+  std::map<std::string, double*> numbers = {{"static.item_ns", &o.static_list.item_ns},
+                                            {"static.frame_fixed_ns", &o.static_list.frame_fixed_ns},
+                                            {"static.second_worker_ns", &o.static_list.second_worker_ns},
+                                            {"queue.item_ns", &o.queue.item_ns},
+                                            {"queue.frame_fixed_ns", &o.queue.frame_fixed_ns},
+                                            {"queue.second_worker_ns", &o.queue.second_worker_ns},
+                                            {"stealing.item_ns", &o.stealing.item_ns},
+                                            {"stealing.frame_fixed_ns", &o.stealing.frame_fixed_ns},
+                                            {"stealing.second_worker_ns", &o.stealing.second_worker_ns},
+                                            {"chase_lev.item_ns", &o.chase_lev.item_ns},
+                                            {"chase_lev.frame_fixed_ns", &o.chase_lev.frame_fixed_ns},
+                                            {"chase_lev.second_worker_ns", &o.chase_lev.second_worker_ns},
+                                            {"line_transfer_ns", &o.line_transfer_ns},
+                                            {"lock_uncontended_ns", &o.lock_uncontended_ns},
+                                            {"lock_handoff_ns", &o.lock_handoff_ns},
+                                            {"fence_ns", &o.fence_ns},
+                                            {"idle_round_ns", &o.idle_round_ns},
+                                            {"lock_wake_ns", &o.lock_wake_ns},
+                                            {"wake_skew_ns", &o.wake_skew_ns},
+                                            {"affinity_penalty", &o.affinity_penalty}};
   std::string line;
   int line_no = 0;
   while (std::getline(in, line)) {
@@ -378,10 +393,14 @@ Overheads read_overheads(const std::filesystem::path& file) {
     if (key.empty()) continue;
     std::string rest;
     std::getline(s >> std::ws, rest);
-    if (key == "machine") o.machine = rest;
-    else if (key == "commit") o.commit = rest;
-    else if (key == "assumed") o.assumed = rest == "1";
-    else if (key == "affinity_measured") o.affinity_measured = rest == "1";
+    if (key == "machine")
+      o.machine = rest;
+    else if (key == "commit")
+      o.commit = rest;
+    else if (key == "assumed")
+      o.assumed = rest == "1";
+    else if (key == "affinity_measured")
+      o.affinity_measured = rest == "1";
     else if (auto it = numbers.find(key); it != numbers.end()) {
       std::istringstream v(rest);
       if (!(v >> *it->second) || *it->second < 0) throw std::runtime_error(where() + "bad value for " + key);
@@ -409,11 +428,13 @@ std::string describe(const Overheads& o) {
   s << "\n| cost | ns |\n|---|---:|\n| line transfer | " << o.line_transfer_ns << " |\n| lock, uncontended | "
     << o.lock_uncontended_ns << " |\n| lock, contended (per acquisition) | " << o.lock_handoff_ns
     << " |\n| seq_cst fence | " << o.fence_ns << " |\n| steal (4 transfers + fence, derived) | " << o.steal_ns()
-    << " |\n| idle round pause (assumed) | " << o.idle_round_ns << " |\n| each worker beyond 2, per frame (assumed: "
-       "1 µs + 2 transfers) | " << o.extra_worker_ns() << " |\n| lock hand-off to a sleeping waiter | "
-    << o.lock_wake_ns << " |\n| wake-up skew per further worker, per frame | " << o.wake_skew_ns
-    << " |\n\nCache affinity: an item that changed worker since the previous frame costs "
-    << o.affinity_penalty * 100 << " % more"
+    << " |\n| idle round pause (assumed) | " << o.idle_round_ns
+    << " |\n| each worker beyond 2, per frame (assumed: "
+       "1 µs + 2 transfers) | "
+    << o.extra_worker_ns() << " |\n| lock hand-off to a sleeping waiter | " << o.lock_wake_ns
+    << " |\n| wake-up skew per further worker, per frame | " << o.wake_skew_ns
+    << " |\n\nCache affinity: an item that changed worker since the previous frame costs " << o.affinity_penalty * 100
+    << " % more"
     << (o.affinity_measured ? " (measured: lists kept vs shuffled at P = 2).\n"
                             : " (ASSUMED: not measured in this calibration).\n");
   if (o.assumed) s << "\nTwo-thread costs are ASSUMED defaults (one hardware thread: not measurable).\n";

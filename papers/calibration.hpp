@@ -51,15 +51,15 @@ struct Overheads {
   double idle_round_ns = 200;
   double lock_wake_ns = 0;
   double wake_skew_ns = 0;
-  double affinity_penalty = 0;      // fraction of the item's cost
-  bool affinity_measured = false;   // false: affinity_penalty is not a measurement of this machine
+  double affinity_penalty = 0;     // fraction of the item's cost
+  bool affinity_measured = false;  // false: affinity_penalty is not a measurement of this machine
   double extra_worker_ns() const { return 1000 + 2 * line_transfer_ns; }
   double frame_ns(const ModelCosts& m, unsigned workers) const {
     return m.frame_fixed_ns + (workers >= 2 ? m.second_worker_ns : 0) +
            (workers > 2 ? (workers - 2) * extra_worker_ns() : 0);
   }  // a thief's pause after a round without a share (the protocol's spin back-off)
   std::string machine, commit;
-  bool assumed = true;         // true: defaults, not measured
+  bool assumed = true;  // true: defaults, not measured
 
   double steal_ns() const { return 4 * line_transfer_ns + fence_ns; }
   double steal_busy_ns() const { return line_transfer_ns; }
@@ -76,11 +76,11 @@ Overheads calibrate(const std::string& machine, const std::string& commit,
 // (busy_shuffled − busy_kept) / (traced cost of the items that changed worker), busy in thread CPU time.
 struct AffinityMeasurement {
   std::vector<double> kept_busy_ms, shuffled_busy_ms;  // per repeat: Σ over workers of CPU time in items
-  std::vector<double> penalty_per_repeat;             // fraction, per repeat
-  double moved_fraction = 0;                          // of item runs, shuffled lists (kept: 0 after frame 0)
-  double moved_cost_ms = 0;                           // per path: serial cost of the item runs that moved
-  double penalty = 0;                                 // median of penalty_per_repeat
-  double penalty_ns_per_moved_item = 0;               // the same in ns per moved item
+  std::vector<double> penalty_per_repeat;              // fraction, per repeat
+  double moved_fraction = 0;                           // of item runs, shuffled lists (kept: 0 after frame 0)
+  double moved_cost_ms = 0;                            // per path: serial cost of the item runs that moved
+  double penalty = 0;                                  // median of penalty_per_repeat
+  double penalty_ns_per_moved_item = 0;                // the same in ns per moved item
 };
 class PathWorkload;
 AffinityMeasurement measure_affinity(PathWorkload& workload, int repeats, std::uint64_t seed,

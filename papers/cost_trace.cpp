@@ -69,17 +69,27 @@ CostTrace read_cost_trace(const std::filesystem::path& file) {
       std::getline(s >> std::ws, r);
       return r;
     };
-    if (key == "scene") t.scene = rest();
-    else if (key == "path") t.path = rest();
-    else if (key == "machine") t.machine = rest();
-    else if (key == "commit") t.commit = rest();
-    else if (key == "surfaces") { if (!(s >> surfaces) || surfaces == 0) throw fail("bad surface count"); }
-    else if (key == "frames") { if (!(s >> frames) || frames == 0) throw fail("bad frame count"); }
-    else if (key == "width") { if (!(s >> t.width)) throw fail("bad width"); }
-    else if (key == "height") { if (!(s >> t.height)) throw fail("bad height"); }
-    else if (key == "tolerance_px") { if (!(s >> t.tolerance_px)) throw fail("bad tolerance"); }
-    else if (key == "passes") { if (!(s >> t.passes)) throw fail("bad pass count"); }
-    else if (key == "surface") {
+    if (key == "scene")
+      t.scene = rest();
+    else if (key == "path")
+      t.path = rest();
+    else if (key == "machine")
+      t.machine = rest();
+    else if (key == "commit")
+      t.commit = rest();
+    else if (key == "surfaces") {
+      if (!(s >> surfaces) || surfaces == 0) throw fail("bad surface count");
+    } else if (key == "frames") {
+      if (!(s >> frames) || frames == 0) throw fail("bad frame count");
+    } else if (key == "width") {
+      if (!(s >> t.width)) throw fail("bad width");
+    } else if (key == "height") {
+      if (!(s >> t.height)) throw fail("bad height");
+    } else if (key == "tolerance_px") {
+      if (!(s >> t.tolerance_px)) throw fail("bad tolerance");
+    } else if (key == "passes") {
+      if (!(s >> t.passes)) throw fail("bad pass count");
+    } else if (key == "surface") {
       std::size_t id = 0;
       std::array<double, 3> c{};
       double e = 0;

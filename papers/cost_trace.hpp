@@ -32,7 +32,7 @@ struct CostTrace {
   std::string path = "orbit_then_zoom";
   int width = 1280, height = 720;
   double tolerance_px = 1;
-  int passes = 1;                              // serial passes the per-surface means come from
+  int passes = 1;  // serial passes the per-surface means come from
   std::string machine, commit;
   std::vector<std::array<double, 3>> centres;  // per surface
   std::vector<double> estimates;               // per surface: cost estimate for frame 0 (static partitions)
@@ -40,7 +40,7 @@ struct CostTrace {
 
   std::size_t surfaces() const noexcept { return centres.size(); }
   std::size_t frames() const noexcept { return cost_ns.size(); }
-  double frame_cost_ns(std::size_t f) const;   // Σ over surfaces: the serial frame time, bookkeeping excluded
+  double frame_cost_ns(std::size_t f) const;  // Σ over surfaces: the serial frame time, bookkeeping excluded
   double path_cost_ns() const;
 };
 

@@ -34,7 +34,8 @@ namespace {
 SceneCurves measure_scene(PaperRun& run, const std::string& scene) {
   const Options& o = run.options();
   PathWorkload wl = run.load(scene);
-  MeasureOptions mo{.schedulers = {}, .threads = measured_ps(), .repeats = o.repeats, .seed = o.seed, .progress = run.sink()};
+  MeasureOptions mo{
+      .schedulers = {}, .threads = measured_ps(), .repeats = o.repeats, .seed = o.seed, .progress = run.sink()};
   for (const auto& m : kFig8Models) mo.schedulers.push_back(m.scheduler);
   run.say("fig8 " + scene + ": measuring 4 schedulers at P = 1 ... " + std::to_string(hardware_cores()));
   MeasurementNoise sampled;
@@ -66,8 +67,8 @@ SceneCurves measure_scene(PaperRun& run, const std::string& scene) {
     c.meas_busy_ms.push_back(busy);
     c.meas_cpu_pct.push_back(cpu);
     c.meas_path_ms.push_back(paths);
-    c.meas_verdicts.push_back({noise.judge(*runs[kQueueModel], *runs[kStaticModel]),
-                               noise.judge(*runs[kStealingModel], *runs[kQueueModel])});
+    c.meas_verdicts.push_back(
+        {noise.judge(*runs[kQueueModel], *runs[kStaticModel]), noise.judge(*runs[kStealingModel], *runs[kQueueModel])});
   }
   return c;
 }

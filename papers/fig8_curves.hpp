@@ -40,18 +40,18 @@ using PerModel = std::array<T, kFig8ModelCount>;
 struct SceneCurves {
   std::string scene;
   std::size_t surfaces = 0;
-  double serial_fps = 0;                                 // from the trace's Σ costs
+  double serial_fps = 0;  // from the trace's Σ costs
   std::vector<WorkerId> sim_ps, meas_ps;
-  std::vector<PerModel<SimulatedRun>> sim;               // [P index][model]
-  std::vector<PerModel<double>> meas_fps;                // [P index][model]
-  std::vector<PerModel<double>> sim_at_meas_fps;         // simulated at the measured P
-  std::vector<PerModel<double>> meas_busy_ms;            // Σ busy per path run, measured
-  std::vector<PerModel<double>> meas_cpu_pct;            // workers' CPU time / (wall × P), measured
+  std::vector<PerModel<SimulatedRun>> sim;                  // [P index][model]
+  std::vector<PerModel<double>> meas_fps;                   // [P index][model]
+  std::vector<PerModel<double>> sim_at_meas_fps;            // simulated at the measured P
+  std::vector<PerModel<double>> meas_busy_ms;               // Σ busy per path run, measured
+  std::vector<PerModel<double>> meas_cpu_pct;               // workers' CPU time / (wall × P), measured
   std::vector<PerModel<std::vector<double>>> meas_path_ms;  // [P index][model]: per repeat
   // [P index]: global queue / static, load stealing / global queue (path-time ratios), judged.
   std::vector<std::array<JudgedComparison, 2>> meas_verdicts;
-  std::string noise_line;                                // empty: nothing measured
-  report::Json noise;                                    // null: nothing measured
+  std::string noise_line;  // empty: nothing measured
+  report::Json noise;      // null: nothing measured
 };
 
 // The simulated curves of one trace (P = 1 ... --max-p, every model, each audited).

@@ -32,7 +32,8 @@ struct ErrorBand {
 ErrorBand error_band(const PaperRun& run) {
   const Options& o = run.options();
   ErrorBand band;
-  const std::string file = !o.validation.empty() ? o.validation : (std::filesystem::path(o.out) / "validation.json").string();
+  const std::string file =
+      !o.validation.empty() ? o.validation : (std::filesystem::path(o.out) / "validation.json").string();
   std::ifstream in(file);
   if (!in) {
     band.source = o.validation.empty() ? "no validation.json beside the results: simulated curves without error band"
@@ -44,8 +45,8 @@ ErrorBand error_band(const PaperRun& run) {
     for (const auto& r : js.at("ratio_summary")) {
       if (r.at("ratios").get<std::string>().rfind("speed-up ratios", 0) == 0) {
         band.pct = r.at("median_abs_error_pct").get<double>();
-        band.source = file + " (held-out median |error| of " + std::to_string(r.at("n").get<int>()) +
-                      " speed-up ratios)";
+        band.source =
+            file + " (held-out median |error| of " + std::to_string(r.at("n").get<int>()) + " speed-up ratios)";
       }
     }
   } catch (const std::exception& e) {
@@ -80,7 +81,8 @@ report::Table curve_table(const SceneCurves& c) {
 }
 
 report::Table verdict_table(const SceneCurves& c) {
-  report::Table t({{"workers", "P"}, {"queue_vs_static", "global queue / static", false},
+  report::Table t({{"workers", "P"},
+                   {"queue_vs_static", "global queue / static", false},
                    {"stealing_vs_queue", "load stealing / global queue", false}});
   for (std::size_t i = 0; i < c.meas_ps.size(); ++i) {
     t.add_row({c.meas_ps[i], c.meas_verdicts[i][0].text(), c.meas_verdicts[i][1].text()});
@@ -92,30 +94,38 @@ std::string markdown(const std::vector<SceneCurves>& all, PaperRun& run, const V
                      const ErrorBand& band) {
   const Options& o = run.options();
   std::ostringstream md;
-  md << "# Fig. 8: static vs global queue vs load stealing, tessellation rate against processors\n\n" << run.stamp()
+  md << "# Fig. 8: static vs global queue vs load stealing, tessellation rate against processors\n\n"
+     << run.stamp()
      << "\n\nThe paper's models are not available; ours are **procedural stand-ins** with the paper's surface "
-        "counts (`plant:N`), tessellated along the main job's camera path (" << o.frames << " frames: orbit, then "
+        "counts (`plant:N`), tessellated along the main job's camera path ("
+     << o.frames
+     << " frames: orbit, then "
         "zoom). Tessellation rate = whole-model tessellations (frames) per second. **MEASURED** = the real "
-        "schedulers on this machine (median of " << o.repeats << " interleaved repeats); **SIMULATED** = the "
+        "schedulers on this machine (median of "
+     << o.repeats
+     << " interleaved repeats); **SIMULATED** = the "
         "trace-driven models of papers/simulator.hpp replaying the per-surface costs this machine measured, "
         "with costs from calibration.md. Chase-Lev is not in the paper; it is the modern baseline.\n\n"
      << "The paper prints Fig. 8 as a plot; its text gives: the global queue is 5-10% faster than static, load "
         "stealing another 10-20% faster than the queue, and stealing scales close to linearly (Onyx, 4 CPUs; a "
         "Challenge for more).\n\n![Fig. 8](fig8.png)\n\n"
-     << (band.pct > 0 ? "Shaded around each simulated curve: ±" + fixed(band.pct, 1) + " %, the simulator's " +
-                            band.source + "."
-                      : "Simulated curves without an error band: " + band.source + ".")
+     << (band.pct > 0
+             ? "Shaded around each simulated curve: ±" + fixed(band.pct, 1) + " %, the simulator's " + band.source + "."
+             : "Simulated curves without an error band: " + band.source + ".")
      << "\n";
   for (const SceneCurves& c : all) {
     md << "\n## `" << c.scene << "` (" << c.surfaces << " surfaces; serial " << fixed(c.serial_fps, 2)
-       << " frames/s from the trace)\n\n" << curve_table(c).markdown();
+       << " frames/s from the trace)\n\n"
+       << curve_table(c).markdown();
     md << "\nMeasured, round by round (path-time ratio [95 % interval] verdict: " << comparison_method(o.repeats)
-       << "):\n\n" << verdict_table(c).markdown();
+       << "):\n\n"
+       << verdict_table(c).markdown();
     if (!c.meas_ps.empty()) {
       md << "\nWorkers' CPU time over wall × P, measured (below utilization when a worker lost its CPU): ";
       for (std::size_t i = 0; i < c.meas_ps.size(); ++i) {
         md << "P = " << c.meas_ps[i] << ':';
-        for (std::size_t m = 0; m < kFig8ModelCount; ++m) md << ' ' << kFig8Models[m].scheduler << ' ' << fixed(c.meas_cpu_pct[i][m], 1) << '%';
+        for (std::size_t m = 0; m < kFig8ModelCount; ++m)
+          md << ' ' << kFig8Models[m].scheduler << ' ' << fixed(c.meas_cpu_pct[i][m], 1) << '%';
         md << (i + 1 < c.meas_ps.size() ? "; " : ".\n\n");
       }
       md << c.noise_line << '\n';
@@ -134,8 +144,13 @@ std::string markdown(const std::vector<SceneCurves>& all, PaperRun& run, const V
      << "Work inflation = the measured Σ busy time (time inside items, all workers) over the same at P = 1: "
         "how much slower the items themselves ran beside each other (shared caches, memory, SMT siblings, a "
         "noisy host). The models replay the serial costs and do not charge it.\n\n";
-  report::Table errors({{"scene", "scene", false}, {"workers", "P"}, {"model", "model", false}, {"measured", "measured"},
-                        {"simulated", "simulated"}, {"error", "error"}, {"work_inflation", "work inflation"}});
+  report::Table errors({{"scene", "scene", false},
+                        {"workers", "P"},
+                        {"model", "model", false},
+                        {"measured", "measured"},
+                        {"simulated", "simulated"},
+                        {"error", "error"},
+                        {"work_inflation", "work inflation"}});
   double worst = 0, sum_abs = 0;
   int count = 0;
   for (const SceneCurves& c : all) {
@@ -145,17 +160,18 @@ std::string markdown(const std::vector<SceneCurves>& all, PaperRun& run, const V
         worst = std::max(worst, std::abs(err));
         sum_abs += std::abs(err);
         ++count;
-        errors.add_row({"`" + c.scene + "`", c.meas_ps[i], kFig8Models[m].label, report::Cell::fixed(c.meas_fps[i][m], 2),
-                        report::Cell::fixed(c.sim_at_meas_fps[i][m], 2), pct_change(1.0 + err),
-                        report::Cell::fixed(c.meas_busy_ms[i][m] / c.meas_busy_ms[0][m], 3)});
+        errors.add_row({"`" + c.scene + "`", c.meas_ps[i], kFig8Models[m].label,
+                        report::Cell::fixed(c.meas_fps[i][m], 2), report::Cell::fixed(c.sim_at_meas_fps[i][m], 2),
+                        pct_change(1.0 + err), report::Cell::fixed(c.meas_busy_ms[i][m] / c.meas_busy_ms[0][m], 3)});
       }
     }
   }
   md << errors.markdown();
   if (count) {
     md << "\nMean absolute error " << fixed(100.0 * sum_abs / count, 1) << "%, worst " << fixed(100.0 * worst, 1)
-       << "% over " << count << " measured points (P = 1 ... " << hardware_cores() << " only: no bigger machine was "
-       "available to this run).\n";
+       << "% over " << count << " measured points (P = 1 ... " << hardware_cores()
+       << " only: no bigger machine was "
+          "available to this run).\n";
   }
   if (tally.unreliable) md << '\n' << tally.warning();
   md << "\n## Costs the models charge (measured by microbenchmarks)\n\n" << describe(run.overheads());
@@ -164,10 +180,18 @@ std::string markdown(const std::vector<SceneCurves>& all, PaperRun& run, const V
 
 // Long form: per scene every simulated P and model, then the measured points.
 report::Table csv_table(const std::vector<SceneCurves>& all) {
-  report::Table t({{"source", "source", false}, {"scene", "scene", false}, {"surfaces", "surfaces"}, {"workers", "P"},
-                   {"model", "model", false}, {"scheduler", "scheduler", false}, {"frames_per_s", "frames/s"},
-                   {"utilization_pct", "utilization (%)"}, {"imbalance_mean", "imbalance"}, {"steals", "steals"},
-                   {"failed_steals", "failed steals"}, {"lock_waits", "lock waits"}});
+  report::Table t({{"source", "source", false},
+                   {"scene", "scene", false},
+                   {"surfaces", "surfaces"},
+                   {"workers", "P"},
+                   {"model", "model", false},
+                   {"scheduler", "scheduler", false},
+                   {"frames_per_s", "frames/s"},
+                   {"utilization_pct", "utilization (%)"},
+                   {"imbalance_mean", "imbalance"},
+                   {"steals", "steals"},
+                   {"failed_steals", "failed steals"},
+                   {"lock_waits", "lock waits"}});
   for (const SceneCurves& c : all) {
     const auto surfaces = static_cast<std::uint64_t>(c.surfaces);
     for (std::size_t i = 0; i < c.sim_ps.size(); ++i) {
@@ -197,12 +221,18 @@ report::Json scene_json(const SceneCurves& c) {
     simulated.push_back({{"workers", c.sim_ps[i]}, {"fps", fps}});
   }
   for (std::size_t i = 0; i < c.meas_ps.size(); ++i) {
-    measured.push_back({{"workers", c.meas_ps[i]}, {"fps", c.meas_fps[i]}, {"path_ms_per_repeat", c.meas_path_ms[i]},
+    measured.push_back({{"workers", c.meas_ps[i]},
+                        {"fps", c.meas_fps[i]},
+                        {"path_ms_per_repeat", c.meas_path_ms[i]},
                         {"queue_vs_static", c.meas_verdicts[i][0].json()},
-                        {"stealing_vs_queue", c.meas_verdicts[i][1].json()}, {"cpu_pct", c.meas_cpu_pct[i]}});
+                        {"stealing_vs_queue", c.meas_verdicts[i][1].json()},
+                        {"cpu_pct", c.meas_cpu_pct[i]}});
   }
-  report::Json scene = {{"scene", c.scene}, {"surfaces", c.surfaces}, {"serial_fps", c.serial_fps},
-                        {"simulated", simulated}, {"measured", measured}};
+  report::Json scene = {{"scene", c.scene},
+                        {"surfaces", c.surfaces},
+                        {"serial_fps", c.serial_fps},
+                        {"simulated", simulated},
+                        {"measured", measured}};
   if (!c.noise.is_null()) scene["noise"] = c.noise;
   return scene;
 }
@@ -212,9 +242,12 @@ void write_plot(const std::vector<SceneCurves>& all, PaperRun& run, const std::s
   const double e = band.pct / 100.0;
   std::ostringstream gp, gp_efficiency;
   gp << "set terminal pngcairo size 1500,900 font 'sans,10'\nset output '" << name << ".png'\n"
-     << "set multiplot layout 2," << all.size() << " title \"Tessellation rate against processors: lines SIMULATED "
-        "(trace-driven)" << (e > 0 ? ", shaded +-" + fixed(band.pct, 1) + " % (held-out median error)" : ", no error band")
-     << ", points MEASURED\\n" << machine_line() << ", commit " << run.commit() << "\"\n"
+     << "set multiplot layout 2," << all.size()
+     << " title \"Tessellation rate against processors: lines SIMULATED "
+        "(trace-driven)"
+     << (e > 0 ? ", shaded +-" + fixed(band.pct, 1) + " % (held-out median error)" : ", no error band")
+     << ", points MEASURED\\n"
+     << machine_line() << ", commit " << run.commit() << "\"\n"
      << "set grid\nset key left top font ',8'\nset xlabel 'processors P'\n";
   gp_efficiency << "set ylabel '% of ideal (serial trace x P)'\nset yrange [0:110]\nset key left bottom font ',8'\n";
   const char* colours[] = {"#d62728", "#ff7f0e", "#1f77b4", "#2ca02c"};
@@ -234,16 +267,19 @@ void write_plot(const std::vector<SceneCurves>& all, PaperRun& run, const std::s
     }
     run.dir().write(dat, d.str());
     gp << "set title '" << c.scene << " (" << c.surfaces << " surfaces)'\nset ylabel 'frames per second'\n"
-       << "plot '" << dat << "' using 1:(" << c.serial_fps << "*$1) with lines dt 2 lc 'gray40' title 'ideal (serial x P)'";
-    gp_efficiency << "set title '" << c.scene << ": efficiency'\nplot '" << dat << "' using 1:(100) with lines dt 2 "
+       << "plot '" << dat << "' using 1:(" << c.serial_fps
+       << "*$1) with lines dt 2 lc 'gray40' title 'ideal (serial x P)'";
+    gp_efficiency << "set title '" << c.scene << ": efficiency'\nplot '" << dat
+                  << "' using 1:(100) with lines dt 2 "
                      "lc 'gray40' title 'ideal'";
     for (std::size_t m = 0; e > 0 && m < kFig8ModelCount; ++m) {
       const std::string col = "$" + std::to_string(2 + m);
       gp << ", '' using 1:(" << col << "*" << 1 - e << "):(" << col << "*" << 1 + e
          << ") with filledcurves fs transparent solid 0.15 noborder lc rgb '" << colours[m] << "' notitle";
-      gp_efficiency << ", '' using 1:(100*" << col << "*" << 1 - e << "/(" << c.serial_fps << "*$1)):(100*" << col << "*"
-                    << 1 + e << "/(" << c.serial_fps << "*$1)) with filledcurves fs transparent solid 0.15 noborder lc rgb '"
-                    << colours[m] << "' notitle";
+      gp_efficiency << ", '' using 1:(100*" << col << "*" << 1 - e << "/(" << c.serial_fps << "*$1)):(100*" << col
+                    << "*" << 1 + e << "/(" << c.serial_fps
+                    << "*$1)) with filledcurves fs transparent solid 0.15 noborder lc rgb '" << colours[m]
+                    << "' notitle";
     }
     for (std::size_t m = 0; m < kFig8ModelCount; ++m) {
       gp << ", '' using 1:" << 2 + m << " with lines lw 2 lc rgb '" << colours[m] << "' title '" << kFig8Models[m].label
@@ -254,9 +290,9 @@ void write_plot(const std::vector<SceneCurves>& all, PaperRun& run, const std::s
     for (std::size_t m = 0; m < kFig8ModelCount; ++m) {
       gp << ", '' using 1:" << 2 + kFig8ModelCount + m << " with points pt " << 5 + 2 * m << " ps 1.4 lc rgb '"
          << colours[m] << "' title '" << kFig8Models[m].label << " (measured)'";
-      gp_efficiency << ", '' using 1:(100*$" << 2 + kFig8ModelCount + m << "/(" << c.serial_fps << "*$1)) with points pt "
-                    << 5 + 2 * m << " ps 1.4 lc rgb '" << colours[m] << "' title '" << kFig8Models[m].label
-                    << " (measured)'";
+      gp_efficiency << ", '' using 1:(100*$" << 2 + kFig8ModelCount + m << "/(" << c.serial_fps
+                    << "*$1)) with points pt " << 5 + 2 * m << " ps 1.4 lc rgb '" << colours[m] << "' title '"
+                    << kFig8Models[m].label << " (measured)'";
     }
     gp << '\n';
     gp_efficiency << '\n';

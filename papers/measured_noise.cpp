@@ -18,7 +18,8 @@ std::string comparison_method(int rounds, const measure::Settings& settings) {
          "random heap offset in every round) with its " +
          fixed(100 * settings.confidence, 0) + " % Student-t interval" +
          (settings.adjust_for_probe ? ", adjusted for the CPU speed probe when that can be computed" : "") +
-         "; verdict against a ±" + m + " % margin: faster or slower when the whole interval lies beyond it, "
+         "; verdict against a ±" + m +
+         " % margin: faster or slower when the whole interval lies beyond it, "
          "equivalent when it lies inside, inconclusive otherwise; effect = change in path time";
 }
 
@@ -38,18 +39,27 @@ report::Json JudgedComparison::json() const {
     return {{"ratio", x.ratio()}, {"ci95_low", x.ratio_low()}, {"ci95_high", x.ratio_high()}, {"sd_per_round", x.sd}};
   };
   auto number = [&](double v) { return li.valid ? report::Json(v) : report::Json(nullptr); };  // no interval: null
-  return {{"ratio", number(li.ratio())}, {"ci95_low", number(li.ratio_low())}, {"ci95_high", number(li.ratio_high())},
-          {"pairs", c.rounds}, {"effect_pct", number(li.effect_pct())},
+  return {{"ratio", number(li.ratio())},
+          {"ci95_low", number(li.ratio_low())},
+          {"ci95_high", number(li.ratio_high())},
+          {"pairs", c.rounds},
+          {"effect_pct", number(li.effect_pct())},
           {"verdict", reliable() ? measure::to_string(c.decision) : "unreliable"},
-          {"verdict_if_reliable", measure::to_string(c.decision)}, {"reliable", reliable()},
-          {"noise_reason", unreliable_because}, {"margin_pct", 100 * c.margin},
-          {"interval", c.uses_adjusted ? "probe-adjusted t" : "raw t"}, {"raw", interval(c.raw)},
-          {"adjusted", interval(c.adjusted)}, {"variance_removed", c.variance_removed}};
+          {"verdict_if_reliable", measure::to_string(c.decision)},
+          {"reliable", reliable()},
+          {"noise_reason", unreliable_because},
+          {"margin_pct", 100 * c.margin},
+          {"interval", c.uses_adjusted ? "probe-adjusted t" : "raw t"},
+          {"raw", interval(c.raw)},
+          {"adjusted", interval(c.adjusted)},
+          {"variance_removed", c.variance_removed}};
 }
 
 MeasuredNoise::MeasuredNoise(const MeasurementNoise& sampled, const noise::Thresholds& thresholds,
                              const measure::Settings& settings)
-    : sampled_(sampled), thresholds_(thresholds), settings_(settings),
+    : sampled_(sampled),
+      thresholds_(thresholds),
+      settings_(settings),
       serial_spread_(noise::spread_of(sampled.serial_path_ms)),
       diagnosis_(noise::diagnose_spread(sampled.serial_path_ms, sampled.serial_probe, thresholds.spread,
                                         sampled.serial_passes)) {
@@ -72,26 +82,36 @@ JudgedComparison MeasuredNoise::judge(const MeasuredRun& candidate, const Measur
 
 std::string MeasuredNoise::line() const {
   return "Noise monitor (/proc): other processes " + fixed(100 * sampled_.during.other_share(), 1) + " %, steal " +
-         fixed(100 * sampled_.during.steal_share(), 1) + " % of the machine during the measurement (thresholds: " +
-         fixed(100 * thresholds_.other_share, 0) + " % busy, " + fixed(100 * thresholds_.steal_share, 0) +
-         " % steal); single serial passes spread " + fixed(100 * serial_spread_, 1) + " % (context only: the "
-         "verdicts rest on the paired rounds; " + diagnosis_.line + ")" +
-         (warnings_.empty() ? std::string(".") : ": every verdict of it is unreliable.");
+         fixed(100 * sampled_.during.steal_share(), 1) +
+         " % of the machine during the measurement (thresholds: " + fixed(100 * thresholds_.other_share, 0) +
+         " % busy, " + fixed(100 * thresholds_.steal_share, 0) + " % steal); single serial passes spread " +
+         fixed(100 * serial_spread_, 1) +
+         " % (context only: the "
+         "verdicts rest on the paired rounds; " +
+         diagnosis_.line + ")" + (warnings_.empty() ? std::string(".") : ": every verdict of it is unreliable.");
 }
 
 report::Json MeasuredNoise::json() const {
   const noise::Usage& u = sampled_.during;
-  return {{"during", {{"wall_s", u.wall_s}, {"windows", u.windows}, {"ticks", u.total_ticks},
-                      {"other_share", u.other_share()}, {"steal_share", u.steal_share()},
-                      {"busy", noise::assess(u, thresholds_).busy}}},
-          {"serial_path_ms_per_repeat", sampled_.serial_path_ms}, {"serial_spread_pct", 100 * serial_spread_},
-          {"cpu_probe_ns_per_million_steps", sampled_.serial_probe}, {"cpu_probe_spread_pct", 100 * diagnosis_.probe_spread},
-          {"cpu_probe_correlation", diagnosis_.correlation}, {"cpu_varied", diagnosis_.cpu_varied},
+  return {{"during",
+           {{"wall_s", u.wall_s},
+            {"windows", u.windows},
+            {"ticks", u.total_ticks},
+            {"other_share", u.other_share()},
+            {"steal_share", u.steal_share()},
+            {"busy", noise::assess(u, thresholds_).busy}}},
+          {"serial_path_ms_per_repeat", sampled_.serial_path_ms},
+          {"serial_spread_pct", 100 * serial_spread_},
+          {"cpu_probe_ns_per_million_steps", sampled_.serial_probe},
+          {"cpu_probe_spread_pct", 100 * diagnosis_.probe_spread},
+          {"cpu_probe_correlation", diagnosis_.correlation},
+          {"cpu_varied", diagnosis_.cpu_varied},
           {"cpu_probe_follows_passes", diagnosis_.probe_follows_passes},
           {"serial_passes", noise::pass_usage_columns(sampled_.serial_passes)},
           {"serial_same_work_on_cpu", diagnosis_.same_work_on_cpu},
           {"spread_diagnosis", diagnosis_.line},
-          {"busy_threshold_pct", 100 * thresholds_.other_share}, {"spread_threshold_pct", 100 * thresholds_.spread},
+          {"busy_threshold_pct", 100 * thresholds_.other_share},
+          {"spread_threshold_pct", 100 * thresholds_.spread},
           {"warnings", warnings_}};
 }
 
@@ -99,7 +119,8 @@ void VerdictTally::add(const JudgedComparison& j) {
   ++verdicts;
   if (j.reliable()) return;
   ++unreliable;
-  if (std::find(reasons.begin(), reasons.end(), j.unreliable_because) == reasons.end()) reasons.push_back(j.unreliable_because);
+  if (std::find(reasons.begin(), reasons.end(), j.unreliable_because) == reasons.end())
+    reasons.push_back(j.unreliable_because);
 }
 
 std::string VerdictTally::warning() const {

@@ -32,8 +32,8 @@ namespace {
 
 struct Subcommand {
   const char* name;
-  const char* summary;                  // its paragraph in --help
-  int (*run)(fp::PaperRun&);            // runs with the shared options, or
+  const char* summary;                              // its paragraph in --help
+  int (*run)(fp::PaperRun&);                        // runs with the shared options, or
   int (*run_own)(int argc, char** argv) = nullptr;  // parses its own (must come first: `frontsteal-paper NAME ...`)
 };
 
@@ -41,21 +41,29 @@ int run_all(fp::PaperRun& run);
 
 // The registration table: --help lists the subcommands in this order.
 constexpr Subcommand kSubcommands[] = {
-    {"table1", "round robin vs spatial partition (paper Table 1): frames/s and utilization on stand-ins of 1,201 / "
-               "4,101 / 3,392 surfaces; measured at P = cores, simulated at P = cores and P = 25 (the paper's 25 "
-               "Graphics Processors) (~1.5 min on 2 cores)", fp::run_table1},
-    {"fig8", "static vs global queue vs stealing (paper Fig. 8, + Chase-Lev): tessellation rate against P on 5,302 / "
-             "10,604 / 15,906 surfaces; measured at P = 1 ... cores, simulated at P = 1 ... 64, with the simulator's "
-             "error at the measured P (~3 min on 2 cores)", fp::run_fig8},
-    {"table2", "greedy rendering (paper Table 2): tessellations/s, updates/s, average lag on stand-ins of 5,354 / "
-               "5,053 / 8,693 surfaces (headless OpenGL; --null-renderer without); two rows per stand-in: natural, "
-               "and tessellation-bound (--cost-multiplier) (~1 min)", fp::run_table2},
+    {"table1",
+     "round robin vs spatial partition (paper Table 1): frames/s and utilization on stand-ins of 1,201 / "
+     "4,101 / 3,392 surfaces; measured at P = cores, simulated at P = cores and P = 25 (the paper's 25 "
+     "Graphics Processors) (~1.5 min on 2 cores)",
+     fp::run_table1},
+    {"fig8",
+     "static vs global queue vs stealing (paper Fig. 8, + Chase-Lev): tessellation rate against P on 5,302 / "
+     "10,604 / 15,906 surfaces; measured at P = 1 ... cores, simulated at P = 1 ... 64, with the simulator's "
+     "error at the measured P (~3 min on 2 cores)",
+     fp::run_fig8},
+    {"table2",
+     "greedy rendering (paper Table 2): tessellations/s, updates/s, average lag on stand-ins of 5,354 / "
+     "5,053 / 8,693 surfaces (headless OpenGL; --null-renderer without); two rows per stand-in: natural, "
+     "and tessellation-bound (--cost-multiplier) (~1 min)",
+     fp::run_table2},
     {"calibrate", "the microbenchmarks behind the simulator's costs (~10 s)", fp::run_calibrate},
     {"trace", "record a cost trace of --scene into --trace FILE", fp::run_trace},
     {"simulate", "replay --trace FILE through every model for P = 1 ... --max-p", fp::run_simulate},
     {"all", "calibrate, table1, fig8, table2", run_all},
-    {"validate", "the simulator's held-out validation against main-job runs (--study DIR); takes its own options, "
-                 "see `frontsteal-paper validate --help`", nullptr, fp::run_validate_command},
+    {"validate",
+     "the simulator's held-out validation against main-job runs (--study DIR); takes its own options, "
+     "see `frontsteal-paper validate --help`",
+     nullptr, fp::run_validate_command},
 };
 
 int run_all(fp::PaperRun& run) {
@@ -77,8 +85,8 @@ int main(int argc, char** argv) {
   const auto* chosen = std::find_if(std::begin(kSubcommands), std::end(kSubcommands),
                                     [&](const Subcommand& s) { return run.options().command == s.name; });
   if (!chosen->run) {
-    std::cerr << fp::kPaperProgram << ": " << chosen->name << " takes its own options; put it first: "
-              << fp::kPaperProgram << ' ' << chosen->name << " --help\n";
+    std::cerr << fp::kPaperProgram << ": " << chosen->name
+              << " takes its own options; put it first: " << fp::kPaperProgram << ' ' << chosen->name << " --help\n";
     return 2;
   }
   try {

@@ -11,7 +11,8 @@ namespace {
 
 constexpr const char* kProgram = "frontsteal-paper";
 
-constexpr const char* kDescription = R"(Regenerates the tables and the figure of Kumar, Chang & Manocha (SC'96, §6) beside the paper's numbers, on
+constexpr const char* kDescription =
+    R"(Regenerates the tables and the figure of Kumar, Chang & Manocha (SC'96, §6) beside the paper's numbers, on
 procedural stand-ins with the paper's surface counts, and replays per-surface cost traces through
 discrete-event models of the schedulers for P = 1 ... 64. Each command writes NAME.md, NAME.csv, NAME.json and
 NAME.png into --out, stamped with machine, commit and date; every figure says "measured" or "simulated".
@@ -46,22 +47,36 @@ Options parse_options(int argc, char** argv, const std::vector<SubcommandSummary
   report::CommandLine cli(kProgram, kDescription, kFooter);
   CLI::App& app = cli.app();
   cli.out(o.out)->type_name("DIR");
-  cli.app().add_option("--scenes", o.scenes, "comma-separated scenes instead of the command's stand-ins (plant:N, teapot, a file)")
-      ->delimiter(',')->type_name("L");
+  cli.app()
+      .add_option("--scenes", o.scenes,
+                  "comma-separated scenes instead of the command's stand-ins (plant:N, teapot, a file)")
+      ->delimiter(',')
+      ->type_name("L");
   cli.option("--scene", o.scene, "the scene of `trace`")->type_name("S");
-  cli.option("--trace", o.trace, "the trace file of `trace` / `simulate` (default DIR/trace-<scene>.txt)")->type_name("FILE");
-  cli.option("--calibration", o.calibration, "use these costs instead of running the microbenchmarks (written by `calibrate`)")
+  cli.option("--trace", o.trace, "the trace file of `trace` / `simulate` (default DIR/trace-<scene>.txt)")
       ->type_name("FILE");
-  cli.option("--frames", o.frames, "frames along the camera path (orbit, then zoom)")->type_name("F")->check(CLI::Range(1, 100000));
+  cli.option("--calibration", o.calibration,
+             "use these costs instead of running the microbenchmarks (written by `calibrate`)")
+      ->type_name("FILE");
+  cli.option("--frames", o.frames, "frames along the camera path (orbit, then zoom)")
+      ->type_name("F")
+      ->check(CLI::Range(1, 100000));
   cli.option("--repeats", o.repeats,
              "rounds of each measured run: every scheduler, P and the serial loop once per round, in a fresh random "
              "order; comparisons from the per-round log-ratios (Huber estimate, t interval; probe-adjusted from 4 "
              "rounds on), medians for the frames/s columns")
-      ->type_name("R")->check(CLI::Range(1, 1000));
-  cli.option("--passes", o.passes, "serial passes a trace's per-surface medians come from")->type_name("K")->check(CLI::Range(1, 100));
-  cli.option("--max-p", o.max_p, "largest simulated processor count")->type_name("P")->check(CLI::Range(WorkerId{1}, WorkerId{1024}));
+      ->type_name("R")
+      ->check(CLI::Range(1, 1000));
+  cli.option("--passes", o.passes, "serial passes a trace's per-surface medians come from")
+      ->type_name("K")
+      ->check(CLI::Range(1, 100));
+  cli.option("--max-p", o.max_p, "largest simulated processor count")
+      ->type_name("P")
+      ->check(CLI::Range(WorkerId{1}, WorkerId{1024}));
   cli.option("--updates", o.updates, "table2: pusher updates per scene")->type_name("U")->check(CLI::Range(1, 1000000));
-  cli.option("--rate", o.rate, "table2: the pusher's target updates per second")->type_name("R")->check(CLI::Range(0.0, 1000.0));
+  cli.option("--rate", o.rate, "table2: the pusher's target updates per second")
+      ->type_name("R")
+      ->check(CLI::Range(0.0, 1000.0));
   cli.flag("--null-renderer", o.null_renderer, "table2: count what would be drawn, no OpenGL");
   std::string multiplier = "auto";
   cli.option("--cost-multiplier", multiplier,
@@ -76,7 +91,9 @@ Options parse_options(int argc, char** argv, const std::vector<SubcommandSummary
                                                      : "expects auto, off or an integer in [1, 10000], got '" + v + "'";
           },
           ""));
-  cli.seed(o.seed, "victim orders and annealing")->type_name("S")->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
+  cli.seed(o.seed, "victim orders and annealing")
+      ->type_name("S")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
   cli.option("--validation", o.validation,
              "fig8 / simulate: the simulator's held-out validation (validation.json, written by `validate`); its "
              "median |error| on speed-up ratios is drawn as a band around every simulated curve (default: "

@@ -15,12 +15,12 @@
 namespace frontsteal::papers {
 
 struct Options {
-  std::string command;                // the subcommand given
+  std::string command;  // the subcommand given
   std::string out = "results/papers";
-  std::vector<std::string> scenes;    // empty: the command's stand-ins
-  std::string scene = "plant:5302";   // trace
+  std::vector<std::string> scenes;   // empty: the command's stand-ins
+  std::string scene = "plant:5302";  // trace
   std::string trace, calibration;
-  std::string validation;             // fig8: validation.json whose held-out error draws the simulated curves' band
+  std::string validation;  // fig8: validation.json whose held-out error draws the simulated curves' band
   int frames = 24, repeats = 3, passes = 3;
   WorkerId max_p = 64;
   int updates = 150;

@@ -16,7 +16,6 @@ namespace frontsteal::papers {
 
 namespace sc = frontsteal::sched;
 
-
 std::string machine_line() { return cpu_model() + ", " + std::to_string(hardware_cores()) + " hardware threads"; }
 
 std::string today() {
@@ -51,7 +50,9 @@ std::vector<WorkerId> measured_ps() {
 }
 
 PaperRun::PaperRun(Options options, std::string commit, std::string data_dir)
-    : o_(std::move(options)), commit_(std::move(commit)), data_dir_(std::move(data_dir)),
+    : o_(std::move(options)),
+      commit_(std::move(commit)),
+      data_dir_(std::move(data_dir)),
       start_(std::chrono::steady_clock::now()) {}
 
 std::string PaperRun::stamp() const {
@@ -94,7 +95,8 @@ const Overheads& PaperRun::overheads() {
   overheads_ = calibrate(machine_line(), commit_, sink());
   calibrated_here_ = true;
   write_overheads(*overheads_, dir().file("calibration.txt"));
-  dir().write("calibration.md", "# Simulator costs (measured by microbenchmarks)\n\n" + stamp() + "\n\n" + describe(*overheads_));
+  dir().write("calibration.md",
+              "# Simulator costs (measured by microbenchmarks)\n\n" + stamp() + "\n\n" + describe(*overheads_));
   return *overheads_;
 }
 
@@ -137,8 +139,10 @@ void require_audit(const SimulatedRun& r, const std::string& what) {
 
 int run_calibrate(PaperRun& run) {
   const Overheads& ov = run.overheads();
-  std::cout << "# Simulator costs (measured by microbenchmarks)\n\n" << run.stamp() << "\n\n" << describe(ov)
-            << "\nwrote " << (std::filesystem::path(run.options().out) / "calibration.txt").string() << ", calibration.md\n";
+  std::cout << "# Simulator costs (measured by microbenchmarks)\n\n"
+            << run.stamp() << "\n\n"
+            << describe(ov) << "\nwrote " << (std::filesystem::path(run.options().out) / "calibration.txt").string()
+            << ", calibration.md\n";
   return 0;
 }
 

@@ -30,11 +30,11 @@ namespace frontsteal::papers {
 
 inline constexpr const char* kPaperProgram = "frontsteal-paper";
 
-std::string machine_line();                     // "<cpu model>, N hardware threads"
-std::string today();                            // YYYY-MM-DD, UTC
-std::string fixed(double v, int digits);        // "12.35" for (12.345, 2)
-std::string pct_change(double ratio);           // "+3.5%" for 1.035
-std::string short_name(const std::string& scene);  // a scene as a file-name part: plant:5302 → plant-5302
+std::string machine_line();                          // "<cpu model>, N hardware threads"
+std::string today();                                 // YYYY-MM-DD, UTC
+std::string fixed(double v, int digits);             // "12.35" for (12.345, 2)
+std::string pct_change(double ratio);                // "+3.5%" for 1.035
+std::string short_name(const std::string& scene);    // a scene as a file-name part: plant:5302 → plant-5302
 std::vector<WorkerId> simulated_ps(WorkerId max_p);  // 1 ... 16, then steps of 4 to 32, of 8 beyond; max_p last
 std::vector<WorkerId> measured_ps();                 // 1 ... cores
 

@@ -30,7 +30,7 @@ struct ItemCharge {
   const std::vector<double>& cost;
   const std::vector<WorkerId>& previous;  // per item: the worker of the previous frame, or kNoWorker
   double penalty = 0;
-  const std::vector<double>& slowdown;    // per worker (empty: 1)
+  const std::vector<double>& slowdown;  // per worker (empty: 1)
   SimulatedRun& totals;
   static constexpr WorkerId kNoWorker = ~WorkerId{0};
 
@@ -48,8 +48,8 @@ struct ItemCharge {
 // What every model reports for one frame.
 struct FrameOutcome {
   double last_finish_ns = 0;
-  std::vector<double> busy_ns;             // per worker: item costs it ran
-  std::vector<std::vector<ItemId>> ran;    // per worker: the items it ran, in order
+  std::vector<double> busy_ns;           // per worker: item costs it ran
+  std::vector<std::vector<ItemId>> ran;  // per worker: the items it ran, in order
 };
 
 FrameOutcome run_static(const ItemCharge& cost, const sched::Assignment& lists, const ModelCosts& mc, double skew) {
@@ -78,7 +78,7 @@ FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, S
   for (WorkerId w = 0; w < p; ++w) events.push(w * o.wake_skew_ns, w);
   ItemId cursor = 0;
   double free_at = 0;
-  WorkerId last_holder = p;  // none yet
+  WorkerId last_holder = p;       // none yet
   std::vector<char> woken(p, 0);  // [w]: w slept on the lock since its last claim
   while (!events.empty()) {
     const auto e = events.pop();
@@ -96,10 +96,9 @@ FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, S
       continue;
     }
     const double granted = e.at;
-    const double hold = woken[e.worker]
-                            ? o.lock_handoff_ns
-                            : o.lock_uncontended_ns +
-                                  (last_holder != p && last_holder != e.worker ? o.line_transfer_ns : 0);
+    const double hold = woken[e.worker] ? o.lock_handoff_ns
+                                        : o.lock_uncontended_ns +
+                                              (last_holder != p && last_holder != e.worker ? o.line_transfer_ns : 0);
     woken[e.worker] = 0;
     free_at = granted + hold;
     last_holder = e.worker;
@@ -133,8 +132,8 @@ struct StealingState {
   std::vector<std::vector<WorkerId>> victim_orders;
 };
 
-FrameOutcome run_stealing(const ItemCharge& cost, StealingState& state, const Overheads& o,
-                          bool plant_lost_steal, SimulatedRun& totals) {
+FrameOutcome run_stealing(const ItemCharge& cost, StealingState& state, const Overheads& o, bool plant_lost_steal,
+                          SimulatedRun& totals) {
   const auto p = static_cast<WorkerId>(state.lists.size());
   struct Worker {
     std::vector<ItemId> list;
@@ -306,9 +305,18 @@ SimulatedRun simulate(const CostTrace& trace, const Overheads& o, const Simulati
         fo = run_static(cost, *opt.assignment, o.static_list, o.wake_skew_ns);
         mc = &o.static_list;
         break;
-      case Model::queue: fo = run_queue(cost, p, o, run); mc = &o.queue; break;
-      case Model::stealing: fo = run_stealing(cost, stealing, o, opt.plant_lost_steal, run); mc = &o.stealing; break;
-      case Model::chase_lev: fo = run_chase_lev(cost, p, o, chase_rng, run); mc = &o.chase_lev; break;
+      case Model::queue:
+        fo = run_queue(cost, p, o, run);
+        mc = &o.queue;
+        break;
+      case Model::stealing:
+        fo = run_stealing(cost, stealing, o, opt.plant_lost_steal, run);
+        mc = &o.stealing;
+        break;
+      case Model::chase_lev:
+        fo = run_chase_lev(cost, p, o, chase_rng, run);
+        mc = &o.chase_lev;
+        break;
     }
     const double frame = fo.last_finish_ns + o.frame_ns(*mc, p);
     run.frame_ns.push_back(frame);

@@ -16,8 +16,8 @@
 //              random order: a LockList held by another thief costs one line transfer (`steal_busy`); an empty
 //              list two (`steal_empty`); a steal lowers the victim's End at once, holds the victim's LockList
 //              for `steal`; the thief installs the share (stealable only from then on, else two idle
-//              workers could pass one item back and forth forever) and starts it when the steal ends. After a full round without a share
-//              the thief pauses `idle_round`. It stops when no unclaimed item is left anywhere.
+//              workers could pass one item back and forth forever) and starts it when the steal ends. After a full
+//              round without a share the thief pauses `idle_round`. It stops when no unclaimed item is left anywhere.
 //   chase-lev  lazy binary splitting from contiguous blocks every frame; an idle worker steals the oldest
 //              (largest) range of a random victim for `steal_chase_lev`; two thieves on one victim within that
 //              time: the later one loses the CAS (`steal_busy`). Per item `item_chase_lev`.
@@ -50,22 +50,22 @@ struct SimulationOptions {
   Model model = Model::stealing;
   WorkerId workers = 2;
   const sched::Assignment* assignment = nullptr;  // static_list: the lists (required)
-  std::uint64_t seed = 1;                          // victim orders
-  bool plant_lost_steal = false;  // negative control: a thief copies a share but never lowers the victim's End
+  std::uint64_t seed = 1;                         // victim orders
+  bool plant_lost_steal = false;          // negative control: a thief copies a share but never lowers the victim's End
   std::vector<double> worker_slowdown{};  // per worker, ≥ 1: item costs × this (empty: 1 for every worker)
-  bool plant_ignore_affinity = false;   // negative control: the affinity penalty is never charged
+  bool plant_ignore_affinity = false;     // negative control: the affinity penalty is never charged
 };
 
 struct SimulatedRun {
   double path_ns = 0;
   std::vector<double> frame_ns;
   double frames_per_s = 0;
-  double utilization_pct = 0;   // Σ item costs / Σ (frame × P)
-  double imbalance_mean = 0;    // max/mean busy per frame
+  double utilization_pct = 0;  // Σ item costs / Σ (frame × P)
+  double imbalance_mean = 0;   // max/mean busy per frame
   std::uint64_t steals = 0, failed_steals = 0, lock_waits = 0;
   std::uint64_t affinity_misses = 0;  // item runs on another worker than in the previous frame (after frame 0)
   double affinity_penalty_ns = 0;     // what those cost beyond their traced cost
-  std::uint64_t audit_failures = 0;  // frames in which some item did not run exactly once
+  std::uint64_t audit_failures = 0;   // frames in which some item did not run exactly once
 };
 
 SimulatedRun simulate(const CostTrace& trace, const Overheads& overheads, const SimulationOptions& options);

@@ -35,8 +35,11 @@ Row measure_and_simulate(PaperRun& run, const std::string& scene, std::size_t in
   r.scene = scene;
   r.paper_model = index < kPaperTable1.size() && o.scenes.empty() ? std::string(kPaperTable1[index].model) : "";
   r.surfaces = wl.surfaces();
-  MeasureOptions mo{.schedulers = {"round-robin", "spatial-annealing"}, .threads = {pm}, .repeats = o.repeats,
-                    .seed = o.seed, .progress = run.sink()};
+  MeasureOptions mo{.schedulers = {"round-robin", "spatial-annealing"},
+                    .threads = {pm},
+                    .repeats = o.repeats,
+                    .seed = o.seed,
+                    .progress = run.sink()};
   run.say("table1 " + scene + ": measuring round-robin and spatial-annealing at P=" + std::to_string(pm));
   MeasurementNoise sampled;
   const auto meas = measure_schedulers(wl, mo, nullptr, &sampled);
@@ -56,15 +59,22 @@ Row measure_and_simulate(PaperRun& run, const std::string& scene, std::size_t in
   return r;
 }
 
-const std::vector<report::Column> kStandInColumns = {
-    {"paper_model", "stand-in for", false}, {"scene", "scene", false}, {"round_robin_fps", "round robin frames/s"},
-    {"round_robin_utilization_pct", "utilization"}, {"spatial_fps", "spatial frames/s"},
-    {"spatial_utilization_pct", "utilization"}, {"gain", "gain"}};
+const std::vector<report::Column> kStandInColumns = {{"paper_model", "stand-in for", false},
+                                                     {"scene", "scene", false},
+                                                     {"round_robin_fps", "round robin frames/s"},
+                                                     {"round_robin_utilization_pct", "utilization"},
+                                                     {"spatial_fps", "spatial frames/s"},
+                                                     {"spatial_utilization_pct", "utilization"},
+                                                     {"gain", "gain"}};
 
 report::Table paper_table() {
-  report::Table t({{"model", "model", false}, {"surfaces", "surfaces"}, {"round_robin_fps", "round robin frames/s"},
-                   {"round_robin_utilization_pct", "utilization"}, {"partition_fps", "partition frames/s"},
-                   {"partition_utilization_pct", "utilization"}, {"gain", "gain"}});
+  report::Table t({{"model", "model", false},
+                   {"surfaces", "surfaces"},
+                   {"round_robin_fps", "round robin frames/s"},
+                   {"round_robin_utilization_pct", "utilization"},
+                   {"partition_fps", "partition frames/s"},
+                   {"partition_utilization_pct", "utilization"},
+                   {"gain", "gain"}});
   for (const auto& p : kPaperTable1) {
     t.add_row({std::string(p.model), p.surfaces, report::Cell::fixed(p.round_robin_fps, 2),
                report::Cell::shown_as(fixed(p.round_robin_utilization_pct, 1) + "%", p.round_robin_utilization_pct),
@@ -81,7 +91,8 @@ report::Table stand_in_table(const std::vector<Row>& rows, Pick pick) {
   report::Table t(kStandInColumns);
   for (const Row& r : rows) {
     const auto [a, b] = pick(r);
-    t.add_row({r.paper_model.empty() ? std::string("-") : r.paper_model, "`" + r.scene + "`", report::Cell::fixed(a.frames_per_s, 2),
+    t.add_row({r.paper_model.empty() ? std::string("-") : r.paper_model, "`" + r.scene + "`",
+               report::Cell::fixed(a.frames_per_s, 2),
                report::Cell::shown_as(fixed(a.utilization_pct, 1) + "%", a.utilization_pct),
                report::Cell::fixed(b.frames_per_s, 2),
                report::Cell::shown_as(fixed(b.utilization_pct, 1) + "%", b.utilization_pct),
@@ -92,8 +103,10 @@ report::Table stand_in_table(const std::vector<Row>& rows, Pick pick) {
 
 // The measured comparison, repeat by repeat, with CPU time and the noise monitor's line.
 report::Table verdict_table(const std::vector<Row>& rows) {
-  report::Table t({{"scene", "scene", false}, {"spatial_vs_round_robin", "spatial / round robin [95% CI] verdict", false},
-                   {"round_robin_cpu_pct", "cpu round robin"}, {"spatial_cpu_pct", "cpu spatial"}});
+  report::Table t({{"scene", "scene", false},
+                   {"spatial_vs_round_robin", "spatial / round robin [95% CI] verdict", false},
+                   {"round_robin_cpu_pct", "cpu round robin"},
+                   {"spatial_cpu_pct", "cpu spatial"}});
   for (const Row& r : rows) {
     t.add_row({"`" + r.scene + "`", r.spatial_vs_rr.text(),
                report::Cell::shown_as(fixed(r.meas_rr.cpu_pct, 1) + "%", r.meas_rr.cpu_pct),
@@ -108,27 +121,42 @@ std::string markdown(const std::vector<Row>& rows, const PaperRun& run, const Ve
   using Pair = std::pair<const MeasuredRun&, const MeasuredRun&>;
   using SimPair = std::pair<const SimulatedRun&, const SimulatedRun&>;
   std::ostringstream md;
-  md << "# Table 1: static load distribution, round robin vs spatial partition\n\n" << run.stamp() << "\n\n"
+  md << "# Table 1: static load distribution, round robin vs spatial partition\n\n"
+     << run.stamp() << "\n\n"
      << "The paper's models (parts of a submarine storage and handling system) are not available; ours are "
         "**procedural stand-ins** with the same surface counts (`plant:N`, tessellate/scene_generator.hpp), "
-        "tessellated along the main job's camera path (" << o.frames << " frames: an orbit, then a zoom into a "
+        "tessellated along the main job's camera path ("
+     << o.frames
+     << " frames: an orbit, then a zoom into a "
         "corner). The paper's partition is a graph partition by simulated annealing; ours is `spatial-annealing` "
         "(schedulers/static_assignment.hpp). Utilization = busy / (wall × P).\n\n"
-     << "## The paper (Pixel-Planes 5, " << ps << " i860 Graphics Processors at 40 MHz)\n\n" << paper_table().markdown();
-  md << "\n## Ours, SIMULATED at P = " << ps << " (the paper's processor count; trace-driven, costs of this machine)\n\n"
-     << stand_in_table(rows, [](const Row& r) { return SimPair{r.sim_rr, r.sim_sp}; }).markdown();
+     << "## The paper (Pixel-Planes 5, " << ps << " i860 Graphics Processors at 40 MHz)\n\n"
+     << paper_table().markdown();
+  md << "\n## Ours, SIMULATED at P = " << ps
+     << " (the paper's processor count; trace-driven, costs of this machine)\n\n"
+     << stand_in_table(rows, [](const Row& r) {
+          return SimPair{r.sim_rr, r.sim_sp};
+        }).markdown();
   md << "\n## Ours, MEASURED at P = " << pm << " (this machine)\n\n"
-     << stand_in_table(rows, [](const Row& r) { return Pair{r.meas_rr, r.meas_sp}; }).markdown();
+     << stand_in_table(rows, [](const Row& r) {
+          return Pair{r.meas_rr, r.meas_sp};
+        }).markdown();
   md << "\n## Ours, SIMULATED at P = " << pm << " (to validate the simulator against the measured rows)\n\n"
-     << stand_in_table(rows, [](const Row& r) { return SimPair{r.sim_rr_m, r.sim_sp_m}; }).markdown();
+     << stand_in_table(rows, [](const Row& r) {
+          return SimPair{r.sim_rr_m, r.sim_sp_m};
+        }).markdown();
   md << "\nSimulator error at P = " << pm << " (frames/s, simulated vs measured): ";
   for (const Row& r : rows) {
     md << "`" << r.scene << "` round robin " << pct_change(r.sim_rr_m.frames_per_s / r.meas_rr.frames_per_s)
        << ", spatial " << pct_change(r.sim_sp_m.frames_per_s / r.meas_sp.frames_per_s) << "; ";
   }
-  md << "\n\nMeasured at P = " << pm << ", round by round: the path-time ratio spatial / round robin [95 % "
-        "interval] and verdict (" << comparison_method(o.repeats) << "), and the workers' CPU time over wall × P "
-        "(below utilization's busy share when a worker lost its CPU):\n\n" << verdict_table(rows).markdown() << '\n';
+  md << "\n\nMeasured at P = " << pm
+     << ", round by round: the path-time ratio spatial / round robin [95 % "
+        "interval] and verdict ("
+     << comparison_method(o.repeats)
+     << "), and the workers' CPU time over wall × P "
+        "(below utilization's busy share when a worker lost its CPU):\n\n"
+     << verdict_table(rows).markdown() << '\n';
   for (const Row& r : rows) md << "`" << r.scene << "`: " << r.noise_line << "\n";
   if (tally.unreliable) md << '\n' << tally.warning();
   md << "\nAbsolute frames/s are not comparable: one core here tessellates these stand-ins far faster than "
@@ -140,14 +168,19 @@ std::string markdown(const std::vector<Row>& rows, const PaperRun& run, const Ve
 // Long form: the paper's rows, then per scene measured and simulated at P = cores, simulated at P = 25.
 report::Table csv_table(const std::vector<Row>& rows) {
   const WorkerId pm = hardware_cores(), ps = kPaperTable1Processors;
-  report::Table t({{"source", "source", false}, {"scene", "scene", false}, {"paper_model", "paper model", false},
-                   {"surfaces", "surfaces"}, {"workers", "workers"}, {"scheduler", "scheduler", false},
-                   {"frames_per_s", "frames/s"}, {"utilization_pct", "utilization (%)"}});
+  report::Table t({{"source", "source", false},
+                   {"scene", "scene", false},
+                   {"paper_model", "paper model", false},
+                   {"surfaces", "surfaces"},
+                   {"workers", "workers"},
+                   {"scheduler", "scheduler", false},
+                   {"frames_per_s", "frames/s"},
+                   {"utilization_pct", "utilization (%)"}});
   for (const auto& p : kPaperTable1) {
-    t.add_row({"paper", "", std::string(p.model), p.surfaces, ps, "round-robin", report::Cell::fixed(p.round_robin_fps, 2),
-               report::Cell::fixed(p.round_robin_utilization_pct, 1)});
-    t.add_row({"paper", "", std::string(p.model), p.surfaces, ps, "graph-partition", report::Cell::fixed(p.partition_fps, 2),
-               report::Cell::fixed(p.partition_utilization_pct, 1)});
+    t.add_row({"paper", "", std::string(p.model), p.surfaces, ps, "round-robin",
+               report::Cell::fixed(p.round_robin_fps, 2), report::Cell::fixed(p.round_robin_utilization_pct, 1)});
+    t.add_row({"paper", "", std::string(p.model), p.surfaces, ps, "graph-partition",
+               report::Cell::fixed(p.partition_fps, 2), report::Cell::fixed(p.partition_utilization_pct, 1)});
   }
   for (const Row& r : rows) {
     auto line = [&](const char* source, WorkerId p, const char* scheduler, double fps, double u) {
@@ -170,7 +203,8 @@ report::Json json(const std::vector<Row>& rows, const PaperRun& run) {
   js["rows"] = report::Json::array();
   for (const Row& r : rows) {
     auto cell = [](double fps, double u) { return report::Json{{"fps", fps}, {"utilization_pct", u}}; };
-    report::Json measured = {{"workers", pm}, {"round_robin", cell(r.meas_rr.frames_per_s, r.meas_rr.utilization_pct)},
+    report::Json measured = {{"workers", pm},
+                             {"round_robin", cell(r.meas_rr.frames_per_s, r.meas_rr.utilization_pct)},
                              {"spatial", cell(r.meas_sp.frames_per_s, r.meas_sp.utilization_pct)}};
     measured["round_robin"]["cpu_pct"] = r.meas_rr.cpu_pct;
     measured["round_robin"]["path_ms_per_repeat"] = r.meas_rr.path_ms;
@@ -178,9 +212,13 @@ report::Json json(const std::vector<Row>& rows, const PaperRun& run) {
     measured["spatial"]["path_ms_per_repeat"] = r.meas_sp.path_ms;
     measured["spatial_vs_round_robin"] = r.spatial_vs_rr.json();
     measured["noise"] = r.noise;
-    js["rows"].push_back({{"scene", r.scene}, {"surfaces", r.surfaces}, {"measured", measured},
-                          {"simulated", {{"workers", ps}, {"round_robin", cell(r.sim_rr.frames_per_s, r.sim_rr.utilization_pct)},
-                                         {"spatial", cell(r.sim_sp.frames_per_s, r.sim_sp.utilization_pct)}}}});
+    js["rows"].push_back({{"scene", r.scene},
+                          {"surfaces", r.surfaces},
+                          {"measured", measured},
+                          {"simulated",
+                           {{"workers", ps},
+                            {"round_robin", cell(r.sim_rr.frames_per_s, r.sim_rr.utilization_pct)},
+                            {"spatial", cell(r.sim_sp.frames_per_s, r.sim_sp.utilization_pct)}}}});
   }
   return js;
 }
@@ -199,16 +237,24 @@ void write_plot(const std::vector<Row>& rows, PaperRun& run) {
         << r.sim_sp.utilization_pct << ' ' << r.meas_rr.utilization_pct << ' ' << r.meas_sp.utilization_pct << '\n';
   }
   gp << "set terminal pngcairo size 1100,620 font 'sans,10'\nset output 'table1.png'\n"
-     << "set title \"Table 1: utilization, round robin vs spatial partition\\n" << machine_line() << ", commit "
-     << run.commit() << "\"\nset style data histograms\nset style histogram clustered gap 1\n"
+     << "set title \"Table 1: utilization, round robin vs spatial partition\\n"
+     << machine_line() << ", commit " << run.commit()
+     << "\"\nset style data histograms\nset style histogram clustered gap 1\n"
      << "set style fill solid 0.85 border -1\nset boxwidth 0.9\nset yrange [0:105]\nset ylabel 'utilization (%)'\n"
      << "set key outside right top\nset grid ytics\n"
      << "plot 'table1.dat' using 2:xtic(1) title 'paper: round robin (P=25, Pixel-Planes 5)' lc rgb '#9ecae1', "
         "'' using 3 title 'paper: graph partition (P=25)' lc rgb '#3182bd', "
-        "'' using 4 title 'SIMULATED: round robin (P=" << ps << ")' lc rgb '#fdae6b', "
-        "'' using 5 title 'SIMULATED: spatial (P=" << ps << ")' lc rgb '#e6550d', "
-        "'' using 6 title 'MEASURED: round robin (P=" << pm << ")' lc rgb '#a1d99b', "
-        "'' using 7 title 'MEASURED: spatial (P=" << pm << ")' lc rgb '#31a354'\n";
+        "'' using 4 title 'SIMULATED: round robin (P="
+     << ps
+     << ")' lc rgb '#fdae6b', "
+        "'' using 5 title 'SIMULATED: spatial (P="
+     << ps
+     << ")' lc rgb '#e6550d', "
+        "'' using 6 title 'MEASURED: round robin (P="
+     << pm
+     << ")' lc rgb '#a1d99b', "
+        "'' using 7 title 'MEASURED: spatial (P="
+     << pm << ")' lc rgb '#31a354'\n";
   run.dir().write("table1.dat", dat.str());
   run.dir().write("table1.gp", gp.str());
 }

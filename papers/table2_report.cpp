@@ -22,7 +22,7 @@ namespace {
 constexpr int kSchemaVersion = 2;
 
 struct Row {
-  std::size_t scene = 0;   // index into the scenes
+  std::size_t scene = 0;  // index into the scenes
   int multiplier = 1;
   bool automatic = false;  // K chosen from the natural row
   render::GreedyStats s;
@@ -49,7 +49,8 @@ render::GreedyStats render_once(PaperRun& run, const tess::Model& model, const s
   if (!g.out_dir.empty()) std::filesystem::create_directories(g.out_dir);
   g.progress = run.sink();
   run.say("table2 " + scene + ": greedy rendering" +
-          (multiplier > 1 ? ", tessellation-bound (each surface x" + std::to_string(multiplier) + ")" : std::string(", natural")) +
+          (multiplier > 1 ? ", tessellation-bound (each surface x" + std::to_string(multiplier) + ")"
+                          : std::string(", natural")) +
           ", " + std::to_string(o.updates) + " updates at " + fixed(o.rate, 0) + "/s, pusher + " +
           std::to_string(g.tessellators) + " tessellator(s)");
   return render::run_greedy(model, g);
@@ -73,7 +74,8 @@ void run_scene(PaperRun& run, const std::string& scene, std::size_t si, std::vec
     k = std::clamp(upd > 0 ? static_cast<int>(std::ceil(4.0 * tess / upd)) : 2, 2, 1000);
   }
   Row bound{si, k, automatic, render_once(run, model, scene, k)};
-  const double got = bound.s.tessellations_per_second > 0 ? bound.s.updates_per_second / bound.s.tessellations_per_second : 0;
+  const double got =
+      bound.s.tessellations_per_second > 0 ? bound.s.updates_per_second / bound.s.tessellations_per_second : 0;
   if (automatic && got > 0 && (got < 3 || got > 5)) {
     const int k2 = std::clamp(static_cast<int>(std::ceil(k * 4.0 / got)), 2, 1000);
     if (k2 != k) bound = Row{si, k2, automatic, render_once(run, model, scene, k2)};
@@ -90,11 +92,20 @@ double updates_per_tessellation(const render::GreedyStats& s) {
   return s.tessellations_per_second > 0 ? s.updates_per_second / s.tessellations_per_second : 0;
 }
 
-report::Table markdown_table(const std::vector<Row>& rows, const std::vector<std::string>& scenes, const PaperRun& run) {
-  report::Table t({{"paper_model", "paper model", false}, {"surfaces", "surfaces"}, {"paper_tess", "paper tess/s"},
-                   {"paper_updates", "paper updates/s"}, {"paper_lag", "paper avg lag"},
-                   {"paper_ratio", "paper updates/tess"}, {"scene", "stand-in", false}, {"mode", "mode", false},
-                   {"tess", "tess/s"}, {"updates", "updates/s"}, {"lag", "avg lag"}, {"max_lag", "max lag"},
+report::Table markdown_table(const std::vector<Row>& rows, const std::vector<std::string>& scenes,
+                             const PaperRun& run) {
+  report::Table t({{"paper_model", "paper model", false},
+                   {"surfaces", "surfaces"},
+                   {"paper_tess", "paper tess/s"},
+                   {"paper_updates", "paper updates/s"},
+                   {"paper_lag", "paper avg lag"},
+                   {"paper_ratio", "paper updates/tess"},
+                   {"scene", "stand-in", false},
+                   {"mode", "mode", false},
+                   {"tess", "tess/s"},
+                   {"updates", "updates/s"},
+                   {"lag", "avg lag"},
+                   {"max_lag", "max lag"},
                    {"ratio", "updates/tess"}});
   for (const Row& r : rows) {
     const PaperTable2Row p = paper_row(run, r.scene);
@@ -112,9 +123,15 @@ report::Table markdown_table(const std::vector<Row>& rows, const std::vector<std
 
 // Long form: the paper's row before each paired natural row, then ours.
 report::Table csv_table(const std::vector<Row>& rows, const std::vector<std::string>& scenes, const PaperRun& run) {
-  report::Table t({{"source", "source", false}, {"scene", "scene", false}, {"paper_model", "paper model", false},
-                   {"surfaces", "surfaces"}, {"tessellations_per_s", "tess/s"}, {"updates_per_s", "updates/s"},
-                   {"average_lag", "avg lag"}, {"max_lag", "max lag"}, {"mode", "mode", false},
+  report::Table t({{"source", "source", false},
+                   {"scene", "scene", false},
+                   {"paper_model", "paper model", false},
+                   {"surfaces", "surfaces"},
+                   {"tessellations_per_s", "tess/s"},
+                   {"updates_per_s", "updates/s"},
+                   {"average_lag", "avg lag"},
+                   {"max_lag", "max lag"},
+                   {"mode", "mode", false},
                    {"cost_multiplier", "cost multiplier"}});
   for (const Row& r : rows) {
     const PaperTable2Row p = paper_row(run, r.scene);
@@ -135,11 +152,17 @@ report::Json json(const std::vector<Row>& rows, const std::vector<std::string>& 
   report::Json js = run.document(kSchemaVersion, "table2", "measured");
   js["rows"] = report::Json::array();
   for (const Row& r : rows) {
-    js["rows"].push_back({{"scene", scenes[r.scene]}, {"mode", r.mode()}, {"cost_multiplier", r.multiplier},
-                          {"renderer", r.s.renderer}, {"tessellations_per_s", r.s.tessellations_per_second},
-                          {"updates_per_s", r.s.updates_per_second}, {"average_lag", r.s.mean_lag},
-                          {"max_lag", r.s.max_lag}, {"updates_per_tessellation", updates_per_tessellation(r.s)},
-                          {"mean_triangles", r.s.mean_triangles}, {"colour_plate", r.s.colour_plate_png}});
+    js["rows"].push_back({{"scene", scenes[r.scene]},
+                          {"mode", r.mode()},
+                          {"cost_multiplier", r.multiplier},
+                          {"renderer", r.s.renderer},
+                          {"tessellations_per_s", r.s.tessellations_per_second},
+                          {"updates_per_s", r.s.updates_per_second},
+                          {"average_lag", r.s.mean_lag},
+                          {"max_lag", r.s.max_lag},
+                          {"updates_per_tessellation", updates_per_tessellation(r.s)},
+                          {"mean_triangles", r.s.mean_triangles},
+                          {"colour_plate", r.s.colour_plate_png}});
   }
   return js;
 }
@@ -147,19 +170,24 @@ report::Json json(const std::vector<Row>& rows, const std::vector<std::string>& 
 std::string markdown(const std::vector<Row>& rows, const std::vector<std::string>& scenes, PaperRun& run) {
   const Options& o = run.options();
   std::ostringstream md;
-  md << "# Table 2: greedy rendering (MEASURED)\n\n" << run.stamp() << "\n\n"
+  md << "# Table 2: greedy rendering (MEASURED)\n\n"
+     << run.stamp() << "\n\n"
      << "The paper's Dragon and cars are not available; ours are **procedural stand-ins** with the same surface "
-        "counts (`plant:N`). Each row: " << o.updates << " pusher updates along the walkthrough path at a "
-        "target of " << fixed(o.rate, 0) << " updates/s, pusher + " << tessellators()
-     << " tessellator(s), 640x360, renderer: " << (rows.empty() ? "" : rows[0].s.renderer) << ". Lag = frames the "
+        "counts (`plant:N`). Each row: "
+     << o.updates
+     << " pusher updates along the walkthrough path at a "
+        "target of "
+     << fixed(o.rate, 0) << " updates/s, pusher + " << tessellators()
+     << " tessellator(s), 640x360, renderer: " << (rows.empty() ? "" : rows[0].s.renderer)
+     << ". Lag = frames the "
         "displayed triangles are behind the pusher's view, averaged over components and updates.\n\n"
      << "Two rows per stand-in: **natural** (each surface tessellated once per frame), and **tessellation-bound** "
         "(each surface tessellated K times per frame, only the last result published: the tessellators are K "
         "times slower while the pusher is not, the paper-era situation; "
-     << (o.cost_multiplier == 0 ? "K = ceil(4 x tess/s / updates/s) of the natural row, aiming at the paper's "
-                                  "about 4 updates per tessellation, rescaled once when that lands outside 3-5"
-                                : o.cost_multiplier < 0 ? "not run: --cost-multiplier off"
-                                                        : "K = " + std::to_string(o.cost_multiplier) + ", set by --cost-multiplier")
+     << (o.cost_multiplier == 0  ? "K = ceil(4 x tess/s / updates/s) of the natural row, aiming at the paper's "
+                                   "about 4 updates per tessellation, rescaled once when that lands outside 3-5"
+         : o.cost_multiplier < 0 ? "not run: --cost-multiplier off"
+                                 : "K = " + std::to_string(o.cost_multiplier) + ", set by --cost-multiplier")
      << "). Compare updates/tess with the paper's ~4 and the lag with its 6-16 frames.\n\n"
      << markdown_table(rows, scenes, run).markdown()
      << "\nThe paper's tessellators ran at about a quarter of the update rate (a 1996 R4400 tessellating thousands "
@@ -171,7 +199,8 @@ std::string markdown(const std::vector<Row>& rows, const std::vector<std::string
   for (const Row& r : rows) {
     if (r.s.colour_plate_png.empty()) continue;
     const auto rel = std::filesystem::relative(r.s.colour_plate_png, run.dir().path()).string();
-    md << "\n`" << scenes[r.scene] << "` (" << r.mode() << "), worst sampled lag (lagging | synchronized): ![plate](" << rel << ")\n";
+    md << "\n`" << scenes[r.scene] << "` (" << r.mode() << "), worst sampled lag (lagging | synchronized): ![plate]("
+       << rel << ")\n";
   }
   return md.str();
 }
@@ -197,7 +226,8 @@ void write_plot(const std::vector<Row>& rows, const std::vector<std::string>& sc
         "'paper updates/s' lc rgb '#3182bd', '' using 4 title 'MEASURED tessellations/s' lc rgb '#a1d99b', '' using 5 "
         "title 'MEASURED updates/s' lc rgb '#31a354'\n"
      << "set title 'average lag (frames)'\nset ylabel 'frames'\n"
-     << "plot 'table2.dat' using 6:xtic(1) title 'paper' lc rgb '#3182bd', '' using 7 title 'MEASURED' lc rgb '#31a354'\n"
+     << "plot 'table2.dat' using 6:xtic(1) title 'paper' lc rgb '#3182bd', '' using 7 title 'MEASURED' lc rgb "
+        "'#31a354'\n"
      << "unset multiplot\n";
   run.dir().write("table2.dat", dat.str());
   run.dir().write("table2.gp", gp.str());

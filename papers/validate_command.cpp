@@ -50,7 +50,8 @@ int run_validate_command(int argc, char** argv) {
   Options o;
   report::CommandLine cli(kProgram, kDescription, kFooter);
   cli.option("--study", o.study, "folder of main-job result folders, each with a frontsteal.json")
-      ->required()->type_name("DIR");
+      ->required()
+      ->type_name("DIR");
   cli.option("--calibrate-on", o.calibrate_on, "the set (folder name) the trace scale comes from")->type_name("SET");
   cli.option("--traces", o.traces, "folder of the cost traces (recorded when missing; default OUT/traces)")
       ->type_name("DIR");
@@ -80,7 +81,8 @@ int run_validate_command(int argc, char** argv) {
       }
     }
     std::sort(sets.begin(), sets.end(), [](const MeasuredSet& a, const MeasuredSet& b) { return a.name < b.name; });
-    const auto cal = std::find_if(sets.begin(), sets.end(), [&](const MeasuredSet& s) { return s.name == o.calibrate_on; });
+    const auto cal =
+        std::find_if(sets.begin(), sets.end(), [&](const MeasuredSet& s) { return s.name == o.calibrate_on; });
     if (cal == sets.end()) cli.usage_error("--calibrate-on: no set '" + o.calibrate_on + "' under " + o.study);
     say(std::to_string(sets.size()) + " measured sets; calibration set " + cal->name);
 
@@ -93,7 +95,8 @@ int run_validate_command(int argc, char** argv) {
       ov = calibrate(machine(), FRONTSTEAL_GIT_COMMIT, say);
     }
     // ---- traces (and the affinity penalty, on the calibration set's path) ----------------------------------
-    const std::filesystem::path trace_dir = o.traces.empty() ? std::filesystem::path(o.out) / "traces" : std::filesystem::path(o.traces);
+    const std::filesystem::path trace_dir =
+        o.traces.empty() ? std::filesystem::path(o.out) / "traces" : std::filesystem::path(o.traces);
     std::filesystem::create_directories(trace_dir);
     std::map<std::string, CostTrace> traces;  // by path
     for (const MeasuredSet& s : sets) {

@@ -42,7 +42,8 @@ MeasuredSet read_measured_set(const std::filesystem::path& file, const std::stri
     c.spread_pct = need(r, "path_spread_pct").get<double>();
     auto ratio = [](const report::Json& row, const char* key) {
       MeasuredRatio m;
-      if (!row.contains(key) || !row[key].is_object() || !row[key].contains("ci95_low") || row[key]["ratio"].is_null()) return m;
+      if (!row.contains(key) || !row[key].is_object() || !row[key].contains("ci95_low") || row[key]["ratio"].is_null())
+        return m;
       m.ratio = row[key]["ratio"].get<double>();
       m.low = row[key]["ci95_low"].get<double>();
       m.high = row[key]["ci95_high"].get<double>();

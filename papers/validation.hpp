@@ -39,19 +39,19 @@ struct MeasuredRatio {
 struct MeasuredCell {
   std::string scheduler;
   WorkerId workers = 0;
-  double path_ms = 0;     // median of the repeats
-  double spread_pct = 0;  // the repeats' spread (max/min − 1), as the main job reports it
+  double path_ms = 0;                 // median of the repeats
+  double spread_pct = 0;              // the repeats' spread (max/min − 1), as the main job reports it
   MeasuredRatio vs_serial, vs_queue;  // T_P / T1 and T_P / T_queue-mutex, paired by round (schema 3)
 };
 
 // One frontsteal.json: a path, with or without interference.
 struct MeasuredSet {
-  std::string name;                 // the directory it came from, e.g. walkthrough-pinned
+  std::string name;  // the directory it came from, e.g. walkthrough-pinned
   std::string path, scene;
-  std::string machine;              // where the main job measured it
+  std::string machine;  // where the main job measured it
   bool interference = false;
-  double co_runner_share = 0;       // of one core, measured while the schedulers ran (0 without interference)
-  double serial_ms = 0;             // the serial loop's median path time (co-runner paused)
+  double co_runner_share = 0;  // of one core, measured while the schedulers ran (0 without interference)
+  double serial_ms = 0;        // the serial loop's median path time (co-runner paused)
   std::vector<MeasuredCell> cells;
 };
 

@@ -67,7 +67,8 @@ void write_validation_report(const ValidationRun& run, const std::string& out, b
     summarize_rows("held out: " + s.name, [&](const ValidationRow& r) { return r.set == &s; });
   }
   for (unsigned p : run.threads) {
-    summarize_rows("held out, P = " + std::to_string(p), [&](const ValidationRow& r) { return r.held_out && r.cell.workers == p; });
+    summarize_rows("held out, P = " + std::to_string(p),
+                   [&](const ValidationRow& r) { return r.held_out && r.cell.workers == p; });
   }
   for (const char* sched : {"round-robin", "queue-mutex", "stealing/Fenced", "chase-lev"}) {
     summarize_rows(std::string("held out, ") + sched,
@@ -165,8 +166,9 @@ void write_validation_report(const ValidationRun& run, const std::string& out, b
   std::ostringstream md;
   md << "# Simulator validation on held-out measurements\n\nMachine: " << run.machine << ". Commit "
      << FRONTSTEAL_GIT_COMMIT << ". Measured sets: the main job's frontsteal.json under the study folder, scene "
-     << run.calibration_set->scene << ", path time = median of its repeats. Calibration set: **" << run.calibration_set->name
-     << "** — the only measured path times the model sees (the trace scale " << report::fixed_text(run.trace_scale, 4)
+     << run.calibration_set->scene << ", path time = median of its repeats. Calibration set: **"
+     << run.calibration_set->name << "** — the only measured path times the model sees (the trace scale "
+     << report::fixed_text(run.trace_scale, 4)
      << " = its serial loop / the trace's Σ costs). Every other set is held out: predicted with no refit. "
         "Interference enters as the co-runner's measured core share s (worker 0 runs 1/(1 − s) slower). "
         "Traces: median of "
@@ -182,13 +184,15 @@ void write_validation_report(const ValidationRun& run, const std::string& out, b
      << "The old model is the same simulator without the terms added here (cache affinity, lock hand-off to a "
         "sleeping waiter, per-frame wake-up skew) and without interference. Error = (predicted − measured) / "
         "measured.\n\n## Summary\n\n"
-     << summary.markdown() << "\n## Ratios (every set held out)\n\nWhat survives a machine whose speed changes: "
+     << summary.markdown()
+     << "\n## Ratios (every set held out)\n\nWhat survives a machine whose speed changes: "
         "per cell the paired ratio the main job measured (rounds in random order, its 95 % interval) against the "
         "ratio of two simulated times. The trace scale cancels, so no measured time enters the prediction. Error "
         "vs interval = 0 when the prediction lies inside the measured interval, else its error against the nearer "
         "bound.\n\n"
-     << ratio_summary.markdown() << "\n## Stealing against the queue\n\n" << gap.markdown()
-     << "\n## The model's constants\n\n" << describe(run.constants);
+     << ratio_summary.markdown() << "\n## Stealing against the queue\n\n"
+     << gap.markdown() << "\n## The model's constants\n\n"
+     << describe(run.constants);
   if (run.affinity) {
     md << "\nAffinity measurement (" << run.calibration_set->path << ", P = 2, " << run.affinity_repeats
        << " paired repeats, thread CPU time in items, frames 1..F−1): kept lists "
@@ -201,9 +205,12 @@ void write_validation_report(const ValidationRun& run, const std::string& out, b
     md << ".\n";
   }
   md << "\nASSUMED, not measured: the idle-round pause and each worker beyond 2 (see the table above)"
-     << (run.constants.affinity_measured ? "" : ", and the affinity penalty") << ". Workers P > 2 are not validated here: "
+     << (run.constants.affinity_measured ? "" : ", and the affinity penalty")
+     << ". Workers P > 2 are not validated here: "
         "on a 2-core machine they share cores, which the simulator (one core per worker) does not model.\n"
-     << "\n## Every cell\n\n" << cells.markdown() << "\n## Every ratio\n\n" << ratio_cells.markdown();
+     << "\n## Every cell\n\n"
+     << cells.markdown() << "\n## Every ratio\n\n"
+     << ratio_cells.markdown();
   dir.write("validation.md", md.str());
   dir.write("validation.csv", cells.csv());
   report::Json doc = report::document("frontsteal-paper", 1, "validation", FRONTSTEAL_GIT_COMMIT);
@@ -214,14 +221,11 @@ void write_validation_report(const ValidationRun& run, const std::string& out, b
   doc["trace_scale"] = run.trace_scale;
   doc["trace_passes"] = run.trace_passes;
   doc["threads"] = run.threads;
-  doc["constants"] = {{"lock_wake_ns", run.constants.lock_wake_ns},
-                      {"wake_skew_ns", run.constants.wake_skew_ns},
-                      {"affinity_penalty", run.constants.affinity_penalty},
-                      {"affinity_measured", run.constants.affinity_measured},
-                      {"lock_handoff_ns", run.constants.lock_handoff_ns},
-                      {"line_transfer_ns", run.constants.line_transfer_ns},
-                      {"idle_round_ns_assumed", run.constants.idle_round_ns},
-                      {"microbenchmarks_assumed", run.constants.assumed}};
+  doc["constants"] = {
+      {"lock_wake_ns", run.constants.lock_wake_ns},           {"wake_skew_ns", run.constants.wake_skew_ns},
+      {"affinity_penalty", run.constants.affinity_penalty},   {"affinity_measured", run.constants.affinity_measured},
+      {"lock_handoff_ns", run.constants.lock_handoff_ns},     {"line_transfer_ns", run.constants.line_transfer_ns},
+      {"idle_round_ns_assumed", run.constants.idle_round_ns}, {"microbenchmarks_assumed", run.constants.assumed}};
   if (run.affinity) {
     doc["affinity"] = {{"kept_busy_ms", run.affinity->kept_busy_ms},
                        {"shuffled_busy_ms", run.affinity->shuffled_busy_ms},

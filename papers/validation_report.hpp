@@ -23,8 +23,8 @@ struct ValidationRow {
 };
 
 struct ValidationRun {
-  std::string machine;                          // this machine: the traces and, unless from a file, the constants
-  std::vector<MeasuredSet> sets;                // sorted by name
+  std::string machine;                           // this machine: the traces and, unless from a file, the constants
+  std::vector<MeasuredSet> sets;                 // sorted by name
   const MeasuredSet* calibration_set = nullptr;  // one of sets
   Overheads constants;
   std::string constants_file;                   // --calibration, or "" when measured here

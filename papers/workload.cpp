@@ -23,8 +23,13 @@ namespace {
 tess::PathSceneOptions scene_options(const WorkloadOptions& o) {
   const auto kind = tess::camera_path_named(o.path);
   if (!kind) throw std::invalid_argument("unknown camera path '" + o.path + "'");
-  tess::PathSceneOptions so{.scene = o.scene, .data_dir = o.data_dir, .path = *kind, .frames = o.frames,
-                            .width = o.width, .height = o.height, .settings = {}};
+  tess::PathSceneOptions so{.scene = o.scene,
+                            .data_dir = o.data_dir,
+                            .path = *kind,
+                            .frames = o.frames,
+                            .width = o.width,
+                            .height = o.height,
+                            .settings = {}};
   so.settings.pixel_tolerance = o.tolerance_px;
   return so;
 }
@@ -170,7 +175,8 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
       const ExecutionAudit audit = runs.audit_and_reset();
       if (!audit.exactly_once() || wl.frame_triangles() != reference[f]) {
         throw std::runtime_error(c.run.scheduler + " P=" + std::to_string(c.run.workers) + " frame " +
-                                 std::to_string(f) + ": audit failed (a surface not run exactly once, or the "
+                                 std::to_string(f) +
+                                 ": audit failed (a surface not run exactly once, or the "
                                  "triangle count differs from the serial loop's)");
       }
     }
@@ -178,9 +184,9 @@ std::vector<MeasuredRun> measure_schedulers(PathWorkload& wl, const MeasureOptio
     c.run.path_ms.push_back(total);
     c.run.rounds.add(static_cast<std::size_t>(r), total, probe, 0);
     if (o.progress) {
-      o.progress("repeat " + std::to_string(r + 1) + "/" + std::to_string(o.repeats) + " P=" +
-                 std::to_string(c.run.workers) + " " + c.run.scheduler + ": " + std::to_string(total).substr(0, 6) +
-                 " ms");
+      o.progress("repeat " + std::to_string(r + 1) + "/" + std::to_string(o.repeats) +
+                 " P=" + std::to_string(c.run.workers) + " " + c.run.scheduler + ": " +
+                 std::to_string(total).substr(0, 6) + " ms");
     }
   };
   for (int r = 0; r < o.repeats; ++r) {

@@ -37,7 +37,7 @@ struct WorkloadOptions {
 class PathWorkload {
  public:
   explicit PathWorkload(const WorkloadOptions& options);  // throws what load_scene throws
-  PathWorkload(const PathWorkload&) = delete;  // frames_ refers to scene_: neither copied nor moved
+  PathWorkload(const PathWorkload&) = delete;             // frames_ refers to scene_: neither copied nor moved
   PathWorkload& operator=(const PathWorkload&) = delete;
 
   ItemId surfaces() const noexcept { return scene_.surfaces(); }
@@ -67,17 +67,17 @@ CostTrace record_cost_trace(PathWorkload& workload, int passes, const std::strin
 struct MeasuredRun {
   std::string scheduler;
   WorkerId workers = 0;
-  std::vector<double> path_ms;    // per repeat, the harness's clock around every run_frame
-  measure::ArmRounds rounds;      // per repeat (a round): path time, the CPU speed probe just before it, block 0
+  std::vector<double> path_ms;  // per repeat, the harness's clock around every run_frame
+  measure::ArmRounds rounds;    // per repeat (a round): path time, the CPU speed probe just before it, block 0
   double median_path_ms = 0;
-  double frames_per_s = 0;        // frames / median path time
-  double utilization_pct = 0;     // Σ busy / Σ (wall × P) over every frame of every repeat
-  double imbalance_mean = 0;      // max/mean busy per frame, averaged
-  double busy_ms_per_path = 0;    // Σ over workers of time inside items, per run of the path (mean of repeats)
+  double frames_per_s = 0;      // frames / median path time
+  double utilization_pct = 0;   // Σ busy / Σ (wall × P) over every frame of every repeat
+  double imbalance_mean = 0;    // max/mean busy per frame, averaged
+  double busy_ms_per_path = 0;  // Σ over workers of time inside items, per run of the path (mean of repeats)
   std::uint64_t steals = 0, lock_waits = 0;
-  double cpu_pct = 0;             // the workers' thread CPU time / Σ (wall × P): below utilization's busy share
-                                  // when a worker lost its CPU (descheduled, or asleep on a lock)
-  noise::Usage usage;             // the machine while this cell's paths ran, every repeat (noise_monitor.hpp)
+  double cpu_pct = 0;  // the workers' thread CPU time / Σ (wall × P): below utilization's busy share
+                       // when a worker lost its CPU (descheduled, or asleep on a lock)
+  noise::Usage usage;  // the machine while this cell's paths ran, every repeat (noise_monitor.hpp)
 };
 
 struct MeasureOptions {

@@ -39,7 +39,8 @@ void GreedySession::tessellate(ItemId id, const tess::Camera& camera, const tess
   tess::TriangleBuffers& out = buffers_[publication_->back_slot(c)][id];
   // The tessellation-bound mode (frontsteal-paper table2 --cost-multiplier K): the same surface K times into the
   // same back slot (no one reads it before finish_surface); the last result is the published one.
-  for (int k = 1; k < cost_multiplier; ++k) tess::tessellate_surface(prepared_[id], camera, frustum, settings, scratch, out);
+  for (int k = 1; k < cost_multiplier; ++k)
+    tess::tessellate_surface(prepared_[id], camera, frustum, settings, scratch, out);
   const tess::SurfaceResult r = tess::tessellate_surface(prepared_[id], camera, frustum, settings, scratch, out);
   if (r.inconsistencies() > 0) inconsistencies_.fetch_add(1, std::memory_order::relaxed);
   publication_->finish_surface(c);
@@ -86,8 +87,10 @@ UpdateRecord GreedyPusher::update(int u, const tess::Camera& cam, int current_vi
     ++drawn;
   }
   if (renderer_) {
-    if (capture != nullptr) *capture = renderer_->read_pixels(cam.width, cam.height);
-    else renderer_->finish();
+    if (capture != nullptr)
+      *capture = renderer_->read_pixels(cam.width, cam.height);
+    else
+      renderer_->finish();
   }
   publication.end_update();
   rec.mean_lag = drawn > 0 ? lag_sum / drawn : 0;

@@ -53,14 +53,15 @@ class GreedySession {
   std::uint64_t prepare(int view);
   // Tessellator: one surface into its component's back slot, then the component's count-down (and swap).
   void tessellate(ItemId id, const tess::Camera& camera, const tess::Frustum& frustum,
-                  const tess::TessellationSettings& settings, tess::TessellationScratch& scratch, int cost_multiplier = 1);
+                  const tess::TessellationSettings& settings, tess::TessellationScratch& scratch,
+                  int cost_multiplier = 1);
   // Surface tessellations whose own audit failed (surface_tessellator.hpp, step 6).
   std::uint64_t inconsistencies() const noexcept { return inconsistencies_.load(std::memory_order::relaxed); }
 
  private:
   const tess::Model& model_;
   std::vector<tess::PreparedSurface> prepared_;
-  std::vector<std::vector<ItemId>> component_surfaces_;     // component -> its surfaces
+  std::vector<std::vector<ItemId>> component_surfaces_;      // component -> its surfaces
   std::vector<std::vector<tess::TriangleBuffers>> buffers_;  // [slot][surface]
   std::vector<std::vector<int>> slot_view_;                  // [component][slot]: view the slot was tessellated for
   std::unique_ptr<Publication> publication_;

@@ -31,7 +31,8 @@ std::vector<int> sample_updates(const GreedyOptions& o) {
 
 void pace(const GreedyOptions& o, Clock::time_point start, int u) {
   if (o.display_rate <= 0) return;
-  std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(u / o.display_rate)));
+  std::this_thread::sleep_until(
+      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(u / o.display_rate)));
 }
 
 std::string png_path(const GreedyOptions& o, const std::string& stem, int u) {
@@ -74,8 +75,9 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
   std::atomic<std::uint64_t> frames_done{0};  // for progress lines from the pusher thread
   const auto report = [&](int u) {
     if (o.progress && (u + 1) % std::max(1, o.updates / 10) == 0) {
-      o.progress("update " + std::to_string(u + 1) + "/" + std::to_string(o.updates) + ", tessellation frames " +
-                 std::to_string(o.single_thread ? stats.tessellation_frames : frames_done.load(std::memory_order::relaxed)));
+      o.progress(
+          "update " + std::to_string(u + 1) + "/" + std::to_string(o.updates) + ", tessellation frames " +
+          std::to_string(o.single_thread ? stats.tessellation_frames : frames_done.load(std::memory_order::relaxed)));
     }
   };
   const auto start = Clock::now();
@@ -106,7 +108,8 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
       pusher_done.store(true, std::memory_order::release);
     });
     {
-      StealingScheduler<Fenced> scheduler({.workers = o.tessellators, .items = static_cast<ItemId>(model.surfaces.size()), .seed = 1});
+      StealingScheduler<Fenced> scheduler(
+          {.workers = o.tessellators, .items = static_cast<ItemId>(model.surfaces.size()), .seed = 1});
       std::vector<tess::TessellationScratch> scratch(o.tessellators);
       int last_view = -1;
       // At least one tessellation frame, even when the pusher ends first: a loaded machine can delay this loop
@@ -121,7 +124,8 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
         stats.driver_waits += s.prepare(view);
         const tess::Camera cam = camera(view);
         const tess::Frustum frustum = tess::Frustum::of(cam);
-        scheduler.run_frame([&](ItemId id, WorkerId w) { s.tessellate(id, cam, frustum, o.settings, scratch[w], o.cost_multiplier); });
+        scheduler.run_frame(
+            [&](ItemId id, WorkerId w) { s.tessellate(id, cam, frustum, o.settings, scratch[w], o.cost_multiplier); });
         ++stats.tessellation_frames;
         frames_done.store(stats.tessellation_frames, std::memory_order::relaxed);
         stats.surfaces_tessellated += model.surfaces.size();
@@ -148,7 +152,8 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
       if (rec.triangles > 0) seconds_per_triangle = 1e-3 * rec.draw_ms / static_cast<double>(rec.triangles);
       const double budget = std::max(0.0, period - static_cast<double>(rec.triangles) * seconds_per_triangle);
       rec.budget_ms = 1e3 * budget;
-      const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget));
+      const auto deadline =
+          Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget));
       do {  // at least one surface per update, so tessellation cannot starve
         if (next == model.surfaces.size() && frame_view == u) break;  // this view is tessellated already
         if (next == model.surfaces.size()) {
@@ -184,7 +189,8 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
   stats.mean_lag = lag / n;
   stats.mean_triangles = triangles / n;
   stats.updates_per_second = stats.updates / stats.seconds;
-  stats.tessellations_per_second = static_cast<double>(stats.surfaces_tessellated) / model.surfaces.size() / stats.seconds;
+  stats.tessellations_per_second =
+      static_cast<double>(stats.surfaces_tessellated) / model.surfaces.size() / stats.seconds;
   stats.surfaces_per_second = static_cast<double>(stats.surfaces_tessellated) / stats.seconds;
 
   // Lagging against synchronized images of the same views (the paper's colour plate).
@@ -210,8 +216,9 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
           for (int y = 0; y < image.height; ++y) {
             for (int x = 0; x < plate.width; ++x) {
               std::uint8_t* d = &plate.rgb[(static_cast<std::size_t>(y) * plate.width + x) * 3];
-              const std::uint8_t* src = x < image.width ? image.pixel(x, y)
-                                        : x >= image.width + 8 ? reference.pixel(x - image.width - 8, y) : nullptr;
+              const std::uint8_t* src = x < image.width        ? image.pixel(x, y)
+                                        : x >= image.width + 8 ? reference.pixel(x - image.width - 8, y)
+                                                               : nullptr;
               for (int c = 0; c < 3; ++c) d[c] = src ? src[c] : 255;
             }
           }
@@ -226,16 +233,18 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
   return stats;
 }
 
-Image render_synchronized(const tess::Model& model, const tess::Camera& camera, const tess::TessellationSettings& settings,
-                          std::uint64_t* triangles) {
+Image render_synchronized(const tess::Model& model, const tess::Camera& camera,
+                          const tess::TessellationSettings& settings, std::uint64_t* triangles) {
   int components = 0;
   for (const tess::Surface& s : model.surfaces) components = std::max(components, s.component + 1);
-  std::vector<std::vector<const tess::TriangleBuffers*>> per_component(static_cast<std::size_t>(std::max(components, 1)));
+  std::vector<std::vector<const tess::TriangleBuffers*>> per_component(
+      static_cast<std::size_t>(std::max(components, 1)));
   std::vector<tess::TriangleBuffers> buffers(model.surfaces.size());
   tess::TessellationScratch scratch;
   const tess::Frustum frustum = tess::Frustum::of(camera);
   for (std::size_t id = 0; id < model.surfaces.size(); ++id) {
-    tess::tessellate_surface(tess::prepare_surface(model.surfaces[id]), camera, frustum, settings, scratch, buffers[id]);
+    tess::tessellate_surface(tess::prepare_surface(model.surfaces[id]), camera, frustum, settings, scratch,
+                             buffers[id]);
     per_component[static_cast<std::size_t>(std::max(model.surfaces[id].component, 0))].push_back(&buffers[id]);
   }
   TriangleRenderer renderer(static_cast<std::uint32_t>(per_component.size()));

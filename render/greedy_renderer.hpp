@@ -37,10 +37,10 @@ namespace frontsteal::render {
 
 struct GreedyOptions {
   tess::CameraPathKind path = tess::CameraPathKind::walkthrough;
-  int updates = 240;           // pusher updates, one path frame each
-  double display_rate = 30;    // updates per second the pusher aims at; 0: as fast as it can
-  WorkerId tessellators = 1;   // multi-threaded mode
-  std::uint32_t slots = 3;     // buffers per component
+  int updates = 240;          // pusher updates, one path frame each
+  double display_rate = 30;   // updates per second the pusher aims at; 0: as fast as it can
+  WorkerId tessellators = 1;  // multi-threaded mode
+  std::uint32_t slots = 3;    // buffers per component
   int width = 640, height = 360;
   bool null_renderer = false;  // count what would be drawn; no OpenGL
   bool single_thread = false;  // §5.3 time-budget mode
@@ -56,13 +56,13 @@ struct GreedyOptions {
 
 struct UpdateRecord {
   int update = 0;
-  double at_seconds = 0;       // since the run started
-  double draw_ms = 0;          // begin_update to end_update, uploads included
-  double mean_lag = 0;         // over the components drawn
+  double at_seconds = 0;  // since the run started
+  double draw_ms = 0;     // begin_update to end_update, uploads included
+  double mean_lag = 0;    // over the components drawn
   int max_lag = 0;
   std::uint64_t triangles = 0;
-  std::uint32_t uploads = 0;   // components whose triangles changed since the last update
-  double budget_ms = 0;        // single-threaded mode: the tessellation budget of this update
+  std::uint32_t uploads = 0;  // components whose triangles changed since the last update
+  double budget_ms = 0;       // single-threaded mode: the tessellation budget of this update
 };
 
 struct QualitySample {
@@ -98,7 +98,7 @@ struct GreedyStats {
 GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& options);
 
 // One synchronized frame: every surface tessellated for `camera` and drawn (serially); for tests and references.
-Image render_synchronized(const tess::Model& model, const tess::Camera& camera, const tess::TessellationSettings& settings,
-                          std::uint64_t* triangles = nullptr);
+Image render_synchronized(const tess::Model& model, const tess::Camera& camera,
+                          const tess::TessellationSettings& settings, std::uint64_t* triangles = nullptr);
 
 }  // namespace frontsteal::render

@@ -106,7 +106,8 @@ std::size_t covered_pixels(const Image& image, const std::uint8_t background[3],
   std::size_t n = 0;
   for (std::size_t i = 0; i < image.rgb.size(); i += 3) {
     bool differs = false;
-    for (int c = 0; c < 3; ++c) differs = differs || std::abs(static_cast<int>(image.rgb[i + c]) - background[c]) > tolerance;
+    for (int c = 0; c < 3; ++c)
+      differs = differs || std::abs(static_cast<int>(image.rgb[i + c]) - background[c]) > tolerance;
     n += differs;
   }
   return n;

@@ -20,7 +20,8 @@ const sched::SchedulerInfo& usable(const std::string& name) {
   const sched::SchedulerInfo* info = sched::find_scheduler(name);
   if (info == nullptr) throw std::invalid_argument("unknown scheduler '" + name + "'");
   if (info->contract != Contract::kExactlyOnce) {
-    throw std::invalid_argument("scheduler '" + name + "' is at-least-once: a surface run twice would break its component's count-down");
+    throw std::invalid_argument("scheduler '" + name +
+                                "' is at-least-once: a surface run twice would break its component's count-down");
   }
   return *info;
 }
@@ -35,8 +36,8 @@ std::vector<std::string> LiveGreedy::scheduler_names() {
   return out;
 }
 
-LiveGreedy::LiveGreedy(const tess::Model& model, WorkerId tessellators, std::uint32_t slots, const std::string& scheduler,
-                       const tess::TessellationSettings& settings)
+LiveGreedy::LiveGreedy(const tess::Model& model, WorkerId tessellators, std::uint32_t slots,
+                       const std::string& scheduler, const tess::TessellationSettings& settings)
     : session_(model, slots), tessellators_(tessellators), settings_(settings), scheduler_(scheduler) {
   if (tessellators < 1) throw std::invalid_argument("at least one tessellator");
   if (slots < 2) throw std::invalid_argument("a component needs at least 2 slots");
@@ -112,7 +113,8 @@ void LiveGreedy::drive() {
       Request r;
       {
         std::unique_lock lock(mutex_);
-        changed_.wait(lock, [&] { return stop_ || request_.view != last_view || request_.scheduler != scheduler_name; });
+        changed_.wait(lock,
+                      [&] { return stop_ || request_.view != last_view || request_.scheduler != scheduler_name; });
         if (stop_) return;
         if (request_.view < 0) {  // only the scheduler changed before the first view: nothing to tessellate yet
           last_view = request_.view;

@@ -29,13 +29,13 @@
 namespace frontsteal::render {
 
 struct LiveCounters {
-  std::string scheduler;                 // the scheduler of the newest frame
+  std::string scheduler;  // the scheduler of the newest frame
   std::uint64_t tessellation_frames = 0;
-  std::uint64_t steals = 0;              // successful steals, all frames (schedulers that steal; else 0)
+  std::uint64_t steals = 0;  // successful steals, all frames (schedulers that steal; else 0)
   std::uint64_t last_frame_steals = 0;
-  double last_frame_ms = 0;              // wall time of the newest tessellation frame
+  double last_frame_ms = 0;  // wall time of the newest tessellation frame
   std::uint64_t driver_waits = 0;
-  std::uint64_t inconsistencies = 0;     // surface tessellations that failed their own audit
+  std::uint64_t inconsistencies = 0;  // surface tessellations that failed their own audit
 };
 
 class LiveGreedy {

@@ -29,7 +29,8 @@ namespace report = frontsteal::report;
 namespace {
 
 constexpr const char* kProgram = "frontsteal-render";
-constexpr const char* kDescription = R"(Greedy rendering (paper §5) of a camera path over a scene, headless (OpenGL through EGL; Mesa's llvmpipe when
+constexpr const char* kDescription =
+    R"(Greedy rendering (paper §5) of a camera path over a scene, headless (OpenGL through EGL; Mesa's llvmpipe when
 there is no GPU). A pusher thread draws at the display rate and never waits; tessellators (the stealing
 scheduler) re-tessellate the scene for the view current when their frame starts, and swap each connected
 component's triangles in atomically. Writes PNG frames, lagging and synchronized images of the same views with
@@ -67,9 +68,12 @@ Options parse(int argc, char** argv) {
   cli.option("--tolerance", o.greedy.settings.pixel_tolerance, "screen-space tessellation tolerance, pixels")
       ->check(CLI::Range(0.05, 100.0));
   cli.option("--samples", o.greedy.samples, "lagging/synchronized pairs for PSNR and SSIM")->check(CLI::Range(0, 100));
-  cli.option("--png-every", o.greedy.png_every, "also save every K-th update's frame (0: none)")->check(CLI::Range(0, 1'000'000));
-  cli.flag("--single-thread", o.greedy.single_thread, "one thread: draw, then tessellate within the §5.3 budget 1/R - m*t_p");
-  cli.flag("--null-renderer", o.greedy.null_renderer, "no OpenGL: count the triangles that would be drawn (CPU-only measurements)");
+  cli.option("--png-every", o.greedy.png_every, "also save every K-th update's frame (0: none)")
+      ->check(CLI::Range(0, 1'000'000));
+  cli.flag("--single-thread", o.greedy.single_thread,
+           "one thread: draw, then tessellate within the §5.3 budget 1/R - m*t_p");
+  cli.flag("--null-renderer", o.greedy.null_renderer,
+           "no OpenGL: count the triangles that would be drawn (CPU-only measurements)");
   cli.out(o.out);
   cli.quiet(o.quiet);
   cli.parse(argc, argv);
@@ -84,9 +88,14 @@ Options parse(int argc, char** argv) {
 using report::fixed_text;
 
 report::Table summary_table(const rd::GreedyStats& st) {
-  report::Table t({{"updates_per_second", "updates/s"}, {"tessellations_per_second", "tessellations/s"},
-                   {"surfaces_per_second", "surfaces/s"}, {"mean_lag", "avg lag (frames)"}, {"max_lag", "max lag"},
-                   {"mean_triangles", "triangles/update"}, {"driver_waits", "driver waits"}, {"seconds", "seconds"}});
+  report::Table t({{"updates_per_second", "updates/s"},
+                   {"tessellations_per_second", "tessellations/s"},
+                   {"surfaces_per_second", "surfaces/s"},
+                   {"mean_lag", "avg lag (frames)"},
+                   {"max_lag", "max lag"},
+                   {"mean_triangles", "triangles/update"},
+                   {"driver_waits", "driver waits"},
+                   {"seconds", "seconds"}});
   t.add_row({report::Cell::fixed(st.updates_per_second, 2), report::Cell::fixed(st.tessellations_per_second, 2),
              report::Cell::fixed(st.surfaces_per_second, 0), report::Cell::fixed(st.mean_lag, 2), st.max_lag,
              report::Cell::fixed(st.mean_triangles, 0), st.driver_waits, report::Cell::fixed(st.seconds, 2)});
@@ -94,7 +103,10 @@ report::Table summary_table(const rd::GreedyStats& st) {
 }
 
 report::Table quality_table(const rd::GreedyStats& st) {
-  report::Table t({{"update", "update"}, {"mean_lag", "mean lag"}, {"psnr_db", "PSNR (dB)"}, {"ssim", "SSIM"},
+  report::Table t({{"update", "update"},
+                   {"mean_lag", "mean lag"},
+                   {"psnr_db", "PSNR (dB)"},
+                   {"ssim", "SSIM"},
                    {"images", "images", false}});
   for (const rd::QualitySample& q : st.quality) {
     const report::Json psnr = std::isfinite(q.psnr_db) ? report::Json(q.psnr_db) : report::Json(nullptr);
@@ -107,11 +119,18 @@ report::Table quality_table(const rd::GreedyStats& st) {
 }
 
 report::Table update_table(const rd::GreedyStats& st) {
-  report::Table t({{"update", "update"}, {"at_seconds", "at (s)"}, {"draw_ms", "draw (ms)"}, {"mean_lag", "mean lag"},
-                   {"max_lag", "max lag"}, {"triangles", "triangles"}, {"uploads", "uploads"}, {"budget_ms", "budget (ms)"}});
+  report::Table t({{"update", "update"},
+                   {"at_seconds", "at (s)"},
+                   {"draw_ms", "draw (ms)"},
+                   {"mean_lag", "mean lag"},
+                   {"max_lag", "max lag"},
+                   {"triangles", "triangles"},
+                   {"uploads", "uploads"},
+                   {"budget_ms", "budget (ms)"}});
   for (const rd::UpdateRecord& r : st.per_update) {
     t.add_row({r.update, report::Cell::fixed(r.at_seconds, 3), report::Cell::fixed(r.draw_ms, 3),
-               report::Cell::fixed(r.mean_lag, 2), r.max_lag, r.triangles, r.uploads, report::Cell::fixed(r.budget_ms, 3)});
+               report::Cell::fixed(r.mean_lag, 2), r.max_lag, r.triangles, r.uploads,
+               report::Cell::fixed(r.budget_ms, 3)});
   }
   return t;
 }
@@ -125,9 +144,11 @@ void write_results(const Options& o, const ts::Model& model, const rd::GreedySta
      << o.greedy.slots << " slots per component. Commit " << FRONTSTEAL_GIT_COMMIT << ", "
      << std::thread::hardware_concurrency() << " hardware threads.\n\n"
      << "- renderer: " << st.renderer << "\n- mode: " << st.mode << "\n- display rate asked: "
-     << (o.greedy.display_rate > 0 ? fixed_text(o.greedy.display_rate, 1) + " updates/s" : std::string("as fast as possible"))
+     << (o.greedy.display_rate > 0 ? fixed_text(o.greedy.display_rate, 1) + " updates/s"
+                                   : std::string("as fast as possible"))
      << "\n- tessellation audit (trimmed pieces tiled exactly, (u, v) area = trim-loop area): "
-     << st.tessellation_inconsistencies << " failing surface tessellations\n\n" << summary_table(st).markdown();
+     << st.tessellation_inconsistencies << " failing surface tessellations\n\n"
+     << summary_table(st).markdown();
   if (!st.quality.empty()) {
     md << "\nLagging (what the pusher drew) against synchronized (every surface tessellated for that very view):\n\n"
        << quality_table(st).markdown();
@@ -154,12 +175,14 @@ void write_results(const Options& o, const ts::Model& model, const rd::GreedySta
   dir.write("render.md", md.str());
   dir.write_json("render.json", js);
   dir.write("render.csv", update_table(st).csv());
-  dir.write("render.gp", "# gnuplot script written by frontsteal-render; run from " + o.out + ": gnuplot render.gp\n"
-            "set terminal pngcairo size 900,420\nset output 'render-lag.png'\nset datafile separator ','\n"
-            "set title 'Greedy rendering: lag of the drawn triangles behind the view (measured)'\n"
-            "set xlabel 'pusher update'\nset ylabel 'lag (frames)'\nset key top left\n"
-            "plot 'render.csv' every ::1 using 1:4 with lines lw 2 title 'mean over components', "
-            "'' every ::1 using 1:5 with lines title 'max'\n");
+  dir.write("render.gp",
+            "# gnuplot script written by frontsteal-render; run from " + o.out +
+                ": gnuplot render.gp\n"
+                "set terminal pngcairo size 900,420\nset output 'render-lag.png'\nset datafile separator ','\n"
+                "set title 'Greedy rendering: lag of the drawn triangles behind the view (measured)'\n"
+                "set xlabel 'pusher update'\nset ylabel 'lag (frames)'\nset key top left\n"
+                "plot 'render.csv' every ::1 using 1:4 with lines lw 2 title 'mean over components', "
+                "'' every ::1 using 1:5 with lines title 'max'\n");
   dir.plot("render.gp");
   std::cout << md.str();
 }
@@ -185,7 +208,8 @@ int main(int argc, char** argv) {
     o.greedy.progress = [](const std::string& line) { std::cerr << kProgram << ": " << line << '\n'; };
     std::cerr << kProgram << ": " << o.scene << " (" << model.surfaces.size() << " surfaces, " << components
               << " components), " << ts::name(o.greedy.path) << " path, " << o.greedy.updates << " updates at "
-              << (o.greedy.display_rate > 0 ? fixed_text(o.greedy.display_rate, 0) + "/s" : std::string("full speed")) << '\n';
+              << (o.greedy.display_rate > 0 ? fixed_text(o.greedy.display_rate, 0) + "/s" : std::string("full speed"))
+              << '\n';
   }
   rd::GreedyStats st;
   try {
@@ -204,7 +228,8 @@ int main(int argc, char** argv) {
     std::cerr << kProgram << ": " << e.what() << '\n';
     return 1;
   }
-  if (!o.quiet) std::cerr << kProgram << ": wrote " << o.out << "/render.{md,json,csv}, render-lag.png and the PNG frames\n";
+  if (!o.quiet)
+    std::cerr << kProgram << ": wrote " << o.out << "/render.{md,json,csv}, render-lag.png and the PNG frames\n";
   if (st.tessellation_inconsistencies > 0) {
     std::cerr << kProgram << ": AUDIT FAILED: " << st.tessellation_inconsistencies
               << " surface tessellations failed their audit (overlapping triangles, covered holes or a wrong area)\n";

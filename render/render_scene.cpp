@@ -19,7 +19,8 @@ tess::Model load_render_scene(const std::string& spec, const std::string& data_d
     throw std::runtime_error("cannot load scene '" + spec + "': " + e.what());
   }
   if (model.surfaces.empty()) throw std::runtime_error("scene '" + spec + "' has no surfaces");
-  if (std::any_of(model.surfaces.begin(), model.surfaces.end(), [](const tess::Surface& s) { return s.component < 0; })) {
+  if (std::any_of(model.surfaces.begin(), model.surfaces.end(),
+                  [](const tess::Surface& s) { return s.component < 0; })) {
     const tess::Box box = tess::model_box(model);
     tess::assign_components(model, 1e-6 * std::max(1.0, glm::length(box.hi - box.lo)));
   }

@@ -59,8 +59,12 @@ unsigned compile(GLenum kind, const char* source) {
 glm::vec3 component_colour(std::uint32_t c) {
   const double h = std::fmod(0.13 + 0.618033988749895 * c, 1.0) * 6.0;
   const double x = 1.0 - std::abs(std::fmod(h, 2.0) - 1.0);
-  glm::dvec3 rgb = h < 1 ? glm::dvec3(1, x, 0) : h < 2 ? glm::dvec3(x, 1, 0) : h < 3 ? glm::dvec3(0, 1, x)
-                 : h < 4 ? glm::dvec3(0, x, 1) : h < 5 ? glm::dvec3(x, 0, 1) : glm::dvec3(1, 0, x);
+  glm::dvec3 rgb = h < 1   ? glm::dvec3(1, x, 0)
+                   : h < 2 ? glm::dvec3(x, 1, 0)
+                   : h < 3 ? glm::dvec3(0, 1, x)
+                   : h < 4 ? glm::dvec3(0, x, 1)
+                   : h < 5 ? glm::dvec3(x, 0, 1)
+                           : glm::dvec3(1, 0, x);
   return glm::vec3(0.35 + 0.6 * rgb);
 }
 

@@ -25,7 +25,9 @@ void ViewCamera::orbit(double dx, double dy) {
   pitch_ = std::clamp(pitch_ + dy * kPerPixel, -kMaxPitch, kMaxPitch);
 }
 
-void ViewCamera::zoom(double steps) { distance_ = std::clamp(distance_ * std::pow(0.85, steps), 1e-3 * radius_, 50 * radius_); }
+void ViewCamera::zoom(double steps) {
+  distance_ = std::clamp(distance_ * std::pow(0.85, steps), 1e-3 * radius_, 50 * radius_);
+}
 
 void ViewCamera::walk(double forward, double right, double up) {
   const glm::dvec3 ahead(-std::cos(yaw_), -std::sin(yaw_), 0);  // horizontal, from the eye towards the target
@@ -41,16 +43,18 @@ tess::Camera ViewCamera::camera(int width, int height) const {
   cam.near_plane = 1e-3 * radius_;  // as camera_on_path
   cam.far_plane = 20.0 * radius_ + distance_;
   cam.target = target_;
-  cam.eye = target_ + distance_ * glm::dvec3(std::cos(pitch_) * std::cos(yaw_), std::cos(pitch_) * std::sin(yaw_), std::sin(pitch_));
+  cam.eye = target_ + distance_ * glm::dvec3(std::cos(pitch_) * std::cos(yaw_), std::cos(pitch_) * std::sin(yaw_),
+                                             std::sin(pitch_));
   return cam;
 }
 
 std::string ViewCamera::describe(const tess::Camera& c) {
   char line[512];
-  std::snprintf(line, sizeof line,
-                "eye=%.17g,%.17g,%.17g target=%.17g,%.17g,%.17g up=%.17g,%.17g,%.17g fovy=%.17g near=%.17g far=%.17g size=%dx%d",
-                c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y, c.up.z, c.fovy_radians,
-                c.near_plane, c.far_plane, c.width, c.height);
+  std::snprintf(
+      line, sizeof line,
+      "eye=%.17g,%.17g,%.17g target=%.17g,%.17g,%.17g up=%.17g,%.17g,%.17g fovy=%.17g near=%.17g far=%.17g size=%dx%d",
+      c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y, c.up.z, c.fovy_radians,
+      c.near_plane, c.far_plane, c.width, c.height);
   return line;
 }
 

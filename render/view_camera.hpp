@@ -18,7 +18,7 @@ class ViewCamera {
   explicit ViewCamera(const tess::Box& box);
 
   void orbit(double dx_pixels, double dy_pixels);  // mouse drag: 0.3° per pixel; pitch kept within ±85°
-  void zoom(double steps);                          // wheel notches / keys: distance × 0.85^steps
+  void zoom(double steps);                         // wheel notches / keys: distance × 0.85^steps
   void walk(double forward_steps, double right_steps, double up_steps);  // 5 % of the model radius per step
   void reset();
 

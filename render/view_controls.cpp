@@ -44,26 +44,45 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
   ViewControls& s = controls_of(w);
   const bool press = action == GLFW_PRESS;  // toggles ignore auto-repeat: a held key would flicker
   switch (key) {
-    case GLFW_KEY_W: case GLFW_KEY_UP: s.camera.walk(1, 0, 0); break;
-    case GLFW_KEY_S: case GLFW_KEY_DOWN: s.camera.walk(-1, 0, 0); break;
-    case GLFW_KEY_A: case GLFW_KEY_LEFT: s.camera.walk(0, -1, 0); break;
-    case GLFW_KEY_D: case GLFW_KEY_RIGHT: s.camera.walk(0, 1, 0); break;
+    case GLFW_KEY_W:
+    case GLFW_KEY_UP: s.camera.walk(1, 0, 0); break;
+    case GLFW_KEY_S:
+    case GLFW_KEY_DOWN: s.camera.walk(-1, 0, 0); break;
+    case GLFW_KEY_A:
+    case GLFW_KEY_LEFT: s.camera.walk(0, -1, 0); break;
+    case GLFW_KEY_D:
+    case GLFW_KEY_RIGHT: s.camera.walk(0, 1, 0); break;
     case GLFW_KEY_R: s.camera.walk(0, 0, 1); break;
     case GLFW_KEY_F: s.camera.walk(0, 0, -1); break;
     case GLFW_KEY_Z: s.camera.zoom(1); break;
     case GLFW_KEY_X: s.camera.zoom(-1); break;
-    case GLFW_KEY_0: case GLFW_KEY_HOME: s.camera.reset(); s.message = "camera reset"; break;
+    case GLFW_KEY_0:
+    case GLFW_KEY_HOME:
+      s.camera.reset();
+      s.message = "camera reset";
+      break;
     case GLFW_KEY_T:
       if (!press) break;
       s.live.set_synchronized(!s.live.synchronized());
       s.message = s.live.synchronized() ? "synchronized" : "lagging";
       break;
-    case GLFW_KEY_C: if (press) next_scheduler(s, false); break;
-    case GLFW_KEY_V: if (press) next_scheduler(s, true); break;
-    case GLFW_KEY_H: if (press) s.overlay = !s.overlay; break;
-    case GLFW_KEY_K: if (press) s.keys_shown = !s.keys_shown; break;
-    case GLFW_KEY_P: if (press) s.screenshot = true; break;
-    case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
+    case GLFW_KEY_C:
+      if (press) next_scheduler(s, false);
+      break;
+    case GLFW_KEY_V:
+      if (press) next_scheduler(s, true);
+      break;
+    case GLFW_KEY_H:
+      if (press) s.overlay = !s.overlay;
+      break;
+    case GLFW_KEY_K:
+      if (press) s.keys_shown = !s.keys_shown;
+      break;
+    case GLFW_KEY_P:
+      if (press) s.screenshot = true;
+      break;
+    case GLFW_KEY_ESCAPE:
+    case GLFW_KEY_Q: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
     default: break;
   }
 }
@@ -72,9 +91,12 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
 void on_char(GLFWwindow* w, unsigned codepoint) {
   ViewControls& s = controls_of(w);
   double t = s.live.tolerance();
-  if (codepoint == '+' || codepoint == '=') t *= 1.25;
-  else if (codepoint == '-' || codepoint == '_') t /= 1.25;
-  else return;
+  if (codepoint == '+' || codepoint == '=')
+    t *= 1.25;
+  else if (codepoint == '-' || codepoint == '_')
+    t /= 1.25;
+  else
+    return;
   t = std::clamp(t, 0.05, 100.0);
   s.live.set_tolerance(t);
   char text[64];

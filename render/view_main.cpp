@@ -30,7 +30,8 @@ namespace {
 
 constexpr std::string_view kProgram = "frontsteal-view";
 
-constexpr const char* kAbout = R"(Greedy rendering (paper §5) live in a window: tessellators (the stealing scheduler, or any exactly-once
+constexpr const char* kAbout =
+    R"(Greedy rendering (paper §5) live in a window: tessellators (the stealing scheduler, or any exactly-once
 scheduler of the registry) re-tessellate the scene for the newest view while the pusher draws every frame with
 whatever each component last published. Same pusher and tessellation code as frontsteal-render. An overlay shows
 the update rate, the tessellation rate, the lag and the steals per tessellation frame. Exit status: 0 on window
@@ -53,7 +54,8 @@ rd::ViewOptions parse(int argc, char** argv) {
   cli.flag("--no-overlay", no_overlay, "start with the overlay hidden (H toggles)");
   cli.option("--rate", o.rate, "at most R frames per second; 0: as fast as it can")->check(CLI::Range(0.0, 10000.0));
   cli.option("--screenshot", o.screenshot, "where P writes the window (PNG); with --frames, also after the last frame");
-  cli.option("--frames", o.frames, "exit after N frames (tests, screenshots); 0: run on")->check(CLI::Range(0, 100'000'000));
+  cli.option("--frames", o.frames, "exit after N frames (tests, screenshots); 0: run on")
+      ->check(CLI::Range(0, 100'000'000));
   cli.parse(argc, argv);  // --help: exit 0; a mistake: exit 2, as every frontsteal command
   std::tie(o.width, o.height) = report::parse_size(size);
   o.overlay = !no_overlay;

@@ -22,8 +22,8 @@ void OverlayRates::sample(int updates, const LiveCounters& c) {
   steals0_ = c.steals;
 }
 
-OverlaySize draw_overlay(const OverlayText& text, const LiveGreedy& live, const UpdateRecord& rec, const OverlayRates& rates,
-                         bool keys_shown) {
+OverlaySize draw_overlay(const OverlayText& text, const LiveGreedy& live, const UpdateRecord& rec,
+                         const OverlayRates& rates, bool keys_shown) {
   const LiveCounters c = live.counters();
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.7f);

@@ -30,7 +30,9 @@ constexpr const char* kProgram = "frontsteal-view";
 using Clock = std::chrono::steady_clock;
 
 std::string g_glfw_error;  // the latest GLFW error, for the exit-3 message
-void on_glfw_error(int code, const char* text) { g_glfw_error = "GLFW error " + std::to_string(code) + ": " + (text ? text : "?"); }
+void on_glfw_error(int code, const char* text) {
+  g_glfw_error = "GLFW error " + std::to_string(code) + ": " + (text ? text : "?");
+}
 
 bool set(const char* variable) {
   const char* v = std::getenv(variable);
@@ -88,7 +90,8 @@ std::string gl_string(GLenum name) {
 
 class FrameLoop {
  public:
-  FrameLoop(GLFWwindow* window, const ViewOptions& o, const tess::Model& model, LiveGreedy& live, ViewControls& controls)
+  FrameLoop(GLFWwindow* window, const ViewOptions& o, const tess::Model& model, LiveGreedy& live,
+            ViewControls& controls)
       : window_(window), o_(o), live_(live), controls_(controls) {
     text_.title = o.scene + ": " + std::to_string(model.surfaces.size()) + " surfaces";
     text_.renderer = gl_string(GL_RENDERER) + ", OpenGL " + gl_string(GL_VERSION);
@@ -97,7 +100,8 @@ class FrameLoop {
 
   // Until closed, --frames or interrupted; returns why it stopped.
   std::string run(const volatile std::sig_atomic_t& interrupted) {
-    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o_.rate > 0 ? 1.0 / o_.rate : 0.0));
+    const auto period =
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o_.rate > 0 ? 1.0 / o_.rate : 0.0));
     auto next_frame = Clock::now();
     for (int frame = 0;; ++frame) {
       if (interrupted) return "interrupted (SIGINT/SIGTERM)";
@@ -143,11 +147,11 @@ class FrameLoop {
     std::snprintf(name, sizeof name, "frontsteal-view-%04d.png", screenshots_++);
     const std::string path = o_.screenshot.empty() ? std::string(name) : o_.screenshot;
     write_png(read_framebuffer(cam.width, cam.height), path);
-    std::cout << kProgram << ": screenshot " << path << " update " << rec.update << " camera " << ViewCamera::describe(cam)
-              << " tolerance=" << live_.tolerance() << " mode=" << (live_.synchronized() ? "synchronized" : "lagging")
-              << " mean_lag=" << rec.mean_lag << " overlay=" << (controls_.overlay ? "shown" : "hidden")
-              << " overlay_px=" << overlay_size_.width << 'x' << overlay_size_.height
-              << " keys=" << (controls_.keys_shown ? "shown" : "folded") << std::endl;
+    std::cout << kProgram << ": screenshot " << path << " update " << rec.update << " camera "
+              << ViewCamera::describe(cam) << " tolerance=" << live_.tolerance()
+              << " mode=" << (live_.synchronized() ? "synchronized" : "lagging") << " mean_lag=" << rec.mean_lag
+              << " overlay=" << (controls_.overlay ? "shown" : "hidden") << " overlay_px=" << overlay_size_.width << 'x'
+              << overlay_size_.height << " keys=" << (controls_.keys_shown ? "shown" : "folded") << std::endl;
     controls_.message = "wrote " + path;
   }
 
@@ -179,8 +183,8 @@ int run_view(const tess::Model& model, const ViewOptions& o, const volatile std:
     FrameLoop loop(window, o, model, live, controls);
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(window, &fw, &fh);
-    std::cout << kProgram << ": " << o.scene << " (" << model.surfaces.size() << " surfaces), " << loop.renderer() << ", "
-              << live.scheduler() << " with " << live.tessellators() << " tessellator(s), "
+    std::cout << kProgram << ": " << o.scene << " (" << model.surfaces.size() << " surfaces), " << loop.renderer()
+              << ", " << live.scheduler() << " with " << live.tessellators() << " tessellator(s), "
               << (live.synchronized() ? "synchronized" : "lagging") << "; keys in the overlay and in --help\n"
               << kProgram << ": start camera " << ViewCamera::describe(controls.camera.camera(fw, fh)) << std::endl;
     const auto start = Clock::now();

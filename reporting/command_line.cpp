@@ -25,8 +25,10 @@ class WrappingFormatter : public CLI::Formatter {
   std::string make_option_desc(const CLI::Option* opt) const override {
     std::string text = opt->get_description();
     const std::string full_type = opt->get_type_name();
-    if (const auto colon = full_type.find(':'); colon != std::string::npos) text += " (" + full_type.substr(colon + 1) + ")";
-    if (!full_type.empty() && !opt->get_default_str().empty() && opt->get_default_str() != "[]") text += " [default " + opt->get_default_str() + "]";
+    if (const auto colon = full_type.find(':'); colon != std::string::npos)
+      text += " (" + full_type.substr(colon + 1) + ")";
+    if (!full_type.empty() && !opt->get_default_str().empty() && opt->get_default_str() != "[]")
+      text += " [default " + opt->get_default_str() + "]";
     return wrap(text, 78 - get_column_width());
   }
   // Subcommands' summaries wrapped like option descriptions (frontsteal-paper's are a paragraph each).
@@ -82,15 +84,16 @@ CommandLine::CommandLine(std::string program, std::string description, std::stri
 CLI::Option* CommandLine::out(std::string& dir, const std::string& help) { return option("--out", dir, help); }
 CLI::Option* CommandLine::seed(std::uint64_t& seed, const std::string& help) {
   // CLI11 2.1 takes "-1" (and values past 2^64 - 1) for an unsigned without a word; from_chars does not.
-  return option("--seed", seed, help)->check(CLI::Validator(
-      [](std::string& v) {
-        std::uint64_t parsed = 0;
-        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), parsed);
-        return ec == std::errc{} && end == v.data() + v.size()
-                   ? std::string()
-                   : "expects an integer in [0, 2^64 - 1], got '" + v + "'";
-      },
-      ""));
+  return option("--seed", seed, help)
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            std::uint64_t parsed = 0;
+            const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), parsed);
+            return ec == std::errc{} && end == v.data() + v.size()
+                       ? std::string()
+                       : "expects an integer in [0, 2^64 - 1], got '" + v + "'";
+          },
+          ""));
 }
 CLI::Option* CommandLine::threads(std::vector<unsigned>& counts, const std::string& help) {
   return app_.add_option("--threads", counts, help)->delimiter(',')->check(CLI::Range(1u, 1024u));

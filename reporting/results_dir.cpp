@@ -55,7 +55,8 @@ void write_atomically(const std::filesystem::path& path, std::string_view text) 
   }
 }
 
-ResultsDir::ResultsDir(std::string program, std::filesystem::path dir) : program_(std::move(program)), dir_(std::move(dir)) {
+ResultsDir::ResultsDir(std::string program, std::filesystem::path dir)
+    : program_(std::move(program)), dir_(std::move(dir)) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (ec) throw std::runtime_error("cannot create " + dir_.string() + ": " + ec.message());

@@ -16,20 +16,20 @@
 namespace frontsteal::report {
 
 struct Cell {
-  std::string text;        // as shown (terminal, markdown)
-  Json value;    // as stored (CSV, JSON): a number, a string, a bool or null
+  std::string text;  // as shown (terminal, markdown)
+  Json value;        // as stored (CSV, JSON): a number, a string, a bool or null
 
   Cell() = default;
-  Cell(std::string s) : text(s), value(std::move(s)) {}                   // NOLINT: implicit on purpose
-  Cell(const char* s) : Cell(std::string(s)) {}                           // NOLINT
-  Cell(std::string_view s) : Cell(std::string(s)) {}                      // NOLINT
-  Cell(std::int64_t v) : text(std::to_string(v)), value(v) {}             // NOLINT
-  Cell(std::uint64_t v) : text(std::to_string(v)), value(v) {}            // NOLINT
-  Cell(int v) : Cell(static_cast<std::int64_t>(v)) {}                     // NOLINT
-  Cell(unsigned v) : Cell(static_cast<std::uint64_t>(v)) {}               // NOLINT
-  Cell(long long v) : Cell(static_cast<std::int64_t>(v)) {}               // NOLINT
-  Cell(unsigned long long v) : Cell(static_cast<std::uint64_t>(v)) {}     // NOLINT
-  Cell(bool v) : text(v ? "yes" : "no"), value(v) {}                      // NOLINT
+  Cell(std::string s) : text(s), value(std::move(s)) {}                // NOLINT: implicit on purpose
+  Cell(const char* s) : Cell(std::string(s)) {}                        // NOLINT
+  Cell(std::string_view s) : Cell(std::string(s)) {}                   // NOLINT
+  Cell(std::int64_t v) : text(std::to_string(v)), value(v) {}          // NOLINT
+  Cell(std::uint64_t v) : text(std::to_string(v)), value(v) {}         // NOLINT
+  Cell(int v) : Cell(static_cast<std::int64_t>(v)) {}                  // NOLINT
+  Cell(unsigned v) : Cell(static_cast<std::uint64_t>(v)) {}            // NOLINT
+  Cell(long long v) : Cell(static_cast<std::int64_t>(v)) {}            // NOLINT
+  Cell(unsigned long long v) : Cell(static_cast<std::uint64_t>(v)) {}  // NOLINT
+  Cell(bool v) : text(v ? "yes" : "no"), value(v) {}                   // NOLINT
 
   // A measured or computed real: shown with `digits` decimals, stored exactly.
   static Cell fixed(double v, int digits);
@@ -40,9 +40,9 @@ struct Cell {
 };
 
 struct Column {
-  std::string key;     // CSV header and JSON key: lower_snake_case
-  std::string header;  // terminal and markdown header: words, with the unit
-  bool numeric = true; // right-aligned (markdown ---:) when true
+  std::string key;      // CSV header and JSON key: lower_snake_case
+  std::string header;   // terminal and markdown header: words, with the unit
+  bool numeric = true;  // right-aligned (markdown ---:) when true
 };
 
 class Table {
@@ -55,10 +55,10 @@ class Table {
   const std::vector<Column>& columns() const noexcept { return columns_; }
   const Cell& at(std::size_t row, std::size_t column) const { return rows_.at(row).at(column); }
 
-  std::string markdown() const;   // | header | ... | with ---: under numeric columns
-  std::string terminal() const;   // columns padded to their widest cell, two spaces apart
-  std::string csv() const;        // keys, then values (strings quoted when they need it)
-  Json json() const;    // an array of objects, one per row, keyed by column key
+  std::string markdown() const;  // | header | ... | with ---: under numeric columns
+  std::string terminal() const;  // columns padded to their widest cell, two spaces apart
+  std::string csv() const;       // keys, then values (strings quoted when they need it)
+  Json json() const;             // an array of objects, one per row, keyed by column key
 
  private:
   std::vector<Column> columns_;

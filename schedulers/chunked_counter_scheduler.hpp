@@ -16,8 +16,7 @@ namespace frontsteal::sched {
 
 class ChunkedCounterScheduler final : public TeamScheduler<ChunkedCounterScheduler> {
  public:
-  explicit ChunkedCounterScheduler(const SchedulerConfig& config)
-      : TeamScheduler(config.workers), claims_(config) {}
+  explicit ChunkedCounterScheduler(const SchedulerConfig& config) : TeamScheduler(config.workers), claims_(config) {}
 
   ItemId grain() const noexcept { return claims_.grain; }
 

@@ -45,16 +45,14 @@ namespace frontsteal::sched {
 class ConcurrentQueueScheduler final : public Scheduler {
  public:
   explicit ConcurrentQueueScheduler(const SchedulerConfig& config)
-      : claims_(config),
-        queue_(chunk_count()),
-        producer_(queue_),
-        slots_(config.workers) {
+      : claims_(config), queue_(chunk_count()), producer_(queue_), slots_(config.workers) {
     chunks_.reserve(chunk_count());
     for (ItemId first = 0; first < claims_.items; first = claims_.chunk_end(first)) {
       chunks_.push_back(first);
     }
     consumers_.reserve(config.workers);
-    for (WorkerId w = 0; w < config.workers; ++w) consumers_.push_back(std::make_unique<moodycamel::ConsumerToken>(queue_));
+    for (WorkerId w = 0; w < config.workers; ++w)
+      consumers_.push_back(std::make_unique<moodycamel::ConsumerToken>(queue_));
     team_.emplace(config.workers, [this](WorkerId w) { work(w); });
   }
   ~ConcurrentQueueScheduler() override { team_.reset(); }  // threads first: they use the tokens and the queue
@@ -73,7 +71,9 @@ class ConcurrentQueueScheduler final : public Scheduler {
   ItemId grain() const noexcept { return claims_.grain; }
 
  private:
-  std::size_t chunk_count() const { return claims_.grain ? (std::size_t{claims_.items} + claims_.grain - 1) / claims_.grain : 0; }
+  std::size_t chunk_count() const {
+    return claims_.grain ? (std::size_t{claims_.items} + claims_.grain - 1) / claims_.grain : 0;
+  }
 
   void work(WorkerId w) {
     WorkerSlot& me = slots_[w];
@@ -87,7 +87,7 @@ class ConcurrentQueueScheduler final : public Scheduler {
   ChunkClaims claims_;
   std::vector<ItemId> chunks_;  // the first item of every chunk, in order: the refill of every frame
   moodycamel::ConcurrentQueue<ItemId> queue_;
-  moodycamel::ProducerToken producer_;  // used by the caller only, between frames
+  moodycamel::ProducerToken producer_;                                 // used by the caller only, between frames
   std::vector<std::unique_ptr<moodycamel::ConsumerToken>> consumers_;  // [w]: used by worker w only
   std::vector<WorkerSlot> slots_;
   const ItemFunctionRef* process_ = nullptr;

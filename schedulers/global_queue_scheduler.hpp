@@ -14,8 +14,7 @@ namespace frontsteal::sched {
 
 class GlobalQueueScheduler final : public TeamScheduler<GlobalQueueScheduler> {
  public:
-  explicit GlobalQueueScheduler(const SchedulerConfig& config)
-      : TeamScheduler(config.workers), claims_(config) {}
+  explicit GlobalQueueScheduler(const SchedulerConfig& config) : TeamScheduler(config.workers), claims_(config) {}
 
   ItemId grain() const noexcept { return claims_.grain; }
 

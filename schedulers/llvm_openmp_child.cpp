@@ -107,12 +107,14 @@ LlvmOpenMpChild::LlvmOpenMpChild(WorkerId workers, ItemId items, const ChildWork
     throw std::runtime_error("the child executable " + executable + " is missing");
   }
   // Everything the child needs is built before fork: between fork and exec only async-signal-safe calls.
-  std::vector<std::string> args = {executable, "--workers", std::to_string(workers), "--scene", w.scene,
-                                   "--frames", std::to_string(w.frames), "--path", w.path};
+  std::vector<std::string> args = {executable, "--workers", std::to_string(workers),  "--scene",
+                                   w.scene,    "--frames",  std::to_string(w.frames), "--path",
+                                   w.path};
   std::ostringstream tol;
   tol.precision(17);
   tol << w.tolerance;
-  args.insert(args.end(), {"--tolerance", tol.str(), "--size", std::to_string(w.width) + "x" + std::to_string(w.height)});
+  args.insert(args.end(),
+              {"--tolerance", tol.str(), "--size", std::to_string(w.width) + "x" + std::to_string(w.height)});
   if (w.grain) args.insert(args.end(), {"--grain", std::to_string(w.grain)});
   if (!w.plant_defect.empty()) args.insert(args.end(), {"--plant-defect", w.plant_defect});
   if (w.pin) args.push_back("--pin");
@@ -165,7 +167,7 @@ LlvmOpenMpChild::~LlvmOpenMpChild() { reap(); }
 void LlvmOpenMpChild::reap() {
   if (fd_ >= 0) {
     if (pid_ > 0) ::send(fd_, "quit\n", 5, MSG_NOSIGNAL);  // may fail: the child may be gone already
-    ::close(fd_);  // end of input: the child exits even if it missed "quit"
+    ::close(fd_);                                          // end of input: the child exits even if it missed "quit"
     fd_ = -1;
   }
   if (pid_ <= 0) return;
@@ -204,9 +206,11 @@ std::string LlvmOpenMpChild::read_line() {
       buffer_.erase(0, nl + 1);
       return line;
     }
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
-      throw std::runtime_error("the child did not answer within " + std::to_string(static_cast<int>(timeout_s_)) + " s");
+      throw std::runtime_error("the child did not answer within " + std::to_string(static_cast<int>(timeout_s_)) +
+                               " s");
     }
     pollfd p{fd_, POLLIN, 0};
     const int r = ::poll(&p, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
@@ -279,7 +283,8 @@ std::vector<ChildFrame> LlvmOpenMpChild::run_frames(int first, int last) {
       ws.steals_succeeded = ws.steal_attempts = static_cast<std::uint64_t>(v[4]);
       ws.items_stolen = static_cast<std::uint64_t>(v[5]);
     }
-    if (!decode_runs(t.back(), items_, runs)) throw bad(line, "per-item counts do not cover the " + std::to_string(items_) + " items");
+    if (!decode_runs(t.back(), items_, runs))
+      throw bad(line, "per-item counts do not cover the " + std::to_string(items_) + " items");
     cf.audit = audit_runs(runs);
     frames.push_back(std::move(cf));
   }

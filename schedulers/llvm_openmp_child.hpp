@@ -33,8 +33,7 @@
 namespace frontsteal::sched {
 
 inline constexpr std::string_view kLlvmOpenMpName = "openmp-static-steal";
-inline constexpr std::string_view kLlvmOpenMpSummary =
-    "LLVM libomp static_steal (clang++-14), in a child process";
+inline constexpr std::string_view kLlvmOpenMpSummary = "LLVM libomp static_steal (clang++-14), in a child process";
 
 // The child executable this build made (FRONTSTEAL_LLVM_OPENMP overrides it), and why it is not available
 // ("" when it is: built, and the file exists).
@@ -48,18 +47,18 @@ struct ChildWorkload {
   std::string path = "orbit-then-zoom";  // tessellate/camera_path.hpp name()
   double tolerance = 1.0;
   int width = 1280, height = 720;
-  ItemId grain = 0;                       // 0: the child's default, 1 (as openmp-dynamic)
-  std::string plant_defect;               // "" or frontsteal's --plant-defect value
+  ItemId grain = 0;          // 0: the child's default, 1 (as openmp-dynamic)
+  std::string plant_defect;  // "" or frontsteal's --plant-defect value
   bool pin = false;
-  std::vector<std::string> extra_args;    // passed as they are: --fault, --schedule (negative controls)
+  std::vector<std::string> extra_args;  // passed as they are: --fault, --schedule (negative controls)
 };
 
 // One frame as the child reported it.
 struct ChildFrame {
-  FrameStats stats;                 // wall, and per worker: items, busy, active, cpu, steals
-  std::uint64_t triangles = 0;      // the frame's triangle count
-  std::uint64_t inconsistent = 0;   // surfaces whose tessellation audit failed
-  ExecutionAudit audit;             // exactly once, from the reported per-item execution counts
+  FrameStats stats;                // wall, and per worker: items, busy, active, cpu, steals
+  std::uint64_t triangles = 0;     // the frame's triangle count
+  std::uint64_t inconsistent = 0;  // surfaces whose tessellation audit failed
+  ExecutionAudit audit;            // exactly once, from the reported per-item execution counts
 };
 
 // The parent's exactly-once audit of per-item execution counts (ExecutionCounter's rules).

@@ -13,7 +13,9 @@ namespace {
 class OpenMpDynamicScheduler final : public Scheduler {
  public:
   explicit OpenMpDynamicScheduler(const SchedulerConfig& config)
-      : items_(config.items), grain_(config.grain ? config.grain : 1), timed_(config.time_claims),
+      : items_(config.items),
+        grain_(config.grain ? config.grain : 1),
+        timed_(config.time_claims),
         slots_(config.workers) {}
 
   const FrameStats& run_frame(ItemFunctionRef process) override {

@@ -16,9 +16,8 @@ namespace {
 
 template <class Policy>
 SchedulerInfo stealing_entry() {
-  return {"stealing/" + std::string(Policy::kName),
-          "load stealing (paper §4.2), policy " + std::string(Policy::kName), Policy::kContract, true,
-          [](const SchedulerConfig& c, const WorkloadHints&) -> std::unique_ptr<Scheduler> {
+  return {"stealing/" + std::string(Policy::kName), "load stealing (paper §4.2), policy " + std::string(Policy::kName),
+          Policy::kContract, true, [](const SchedulerConfig& c, const WorkloadHints&) -> std::unique_ptr<Scheduler> {
             return std::make_unique<StealingAdapter<Policy>>(c);
           }};
 }
@@ -36,14 +35,12 @@ std::vector<SchedulerInfo> build() {
                    o.seed = c.seed;
                    return std::make_unique<StaticScheduler>(c, annealed_assignment(c.items, c.workers, h, o));
                  }});
-  all.push_back({"spatial-morton", "static, Morton order of patch centres dealt round robin",
-                 Contract::kExactlyOnce, true,
-                 [](const SchedulerConfig& c, const WorkloadHints& h) -> std::unique_ptr<Scheduler> {
+  all.push_back({"spatial-morton", "static, Morton order of patch centres dealt round robin", Contract::kExactlyOnce,
+                 true, [](const SchedulerConfig& c, const WorkloadHints& h) -> std::unique_ptr<Scheduler> {
                    return std::make_unique<StaticScheduler>(c, morton_deal_assignment(c.items, c.workers, h));
                  }});
-  all.push_back({"queue-mutex", "global queue under std::mutex, grain N/(100P) (paper §4.1)",
-                 Contract::kExactlyOnce, true,
-                 [](const SchedulerConfig& c, const WorkloadHints&) -> std::unique_ptr<Scheduler> {
+  all.push_back({"queue-mutex", "global queue under std::mutex, grain N/(100P) (paper §4.1)", Contract::kExactlyOnce,
+                 true, [](const SchedulerConfig& c, const WorkloadHints&) -> std::unique_ptr<Scheduler> {
                    return std::make_unique<GlobalQueueScheduler>(c);
                  }});
   all.push_back({"moodycamel-queue", "lock-free global queue (moodycamel::ConcurrentQueue), grain N/(100P)",

@@ -31,7 +31,7 @@ struct SchedulerInfo {
   std::string name;
   std::string summary;
   Contract contract = Contract::kExactlyOnce;  // at-least-once: stealing/Paper only
-  bool tsan_clean = true;  // false: its runtime is not built with ThreadSanitizer (TBB, OpenMP)
+  bool tsan_clean = true;                      // false: its runtime is not built with ThreadSanitizer (TBB, OpenMP)
   std::function<std::unique_ptr<Scheduler>(const SchedulerConfig&, const WorkloadHints&)> make;
 };
 

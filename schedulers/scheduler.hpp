@@ -26,8 +26,8 @@ namespace frontsteal::sched {
 class ItemFunctionRef {
  public:
   template <class F>
-    requires(!std::is_same_v<std::remove_cvref_t<F>, ItemFunctionRef>)
-  ItemFunctionRef(F& f) noexcept  // NOLINT: implicit on purpose, so run_frame(lambda) reads naturally
+  requires(!std::is_same_v<std::remove_cvref_t<F>, ItemFunctionRef>) ItemFunctionRef(F& f)
+  noexcept  // NOLINT: implicit on purpose, so run_frame(lambda) reads naturally
       : object_(const_cast<void*>(static_cast<const void*>(&f))),
         call_([](void* o, ItemId id, WorkerId w) { (*static_cast<F*>(o))(id, w); }) {}
   void operator()(ItemId id, WorkerId w) const { call_(object_, id, w); }
@@ -47,9 +47,9 @@ struct WorkloadHints {
 struct SchedulerConfig {
   WorkerId workers = 2;
   ItemId items = 0;
-  ItemId grain = 0;          // items per claim of chunked schedulers; 0 = the scheduler's default
-  std::uint64_t seed = 1;    // victim orders, annealing
-  bool time_claims = true;   // busy time per claim; false drops the clock reads (overhead microbenchmarks)
+  ItemId grain = 0;         // items per claim of chunked schedulers; 0 = the scheduler's default
+  std::uint64_t seed = 1;   // victim orders, annealing
+  bool time_claims = true;  // busy time per claim; false drops the clock reads (overhead microbenchmarks)
 };
 
 class Scheduler {

@@ -22,8 +22,8 @@ inline void require_partition(const Assignment& a, WorkerId workers, ItemId item
   for (const auto& list : a) {
     for (ItemId id : list) {
       if (id >= items || seen[id]) {
-        throw std::invalid_argument("frontsteal: assignment is not a partition of the items (id " +
-                                    std::to_string(id) + ")");
+        throw std::invalid_argument("frontsteal: assignment is not a partition of the items (id " + std::to_string(id) +
+                                    ")");
       }
       seen[id] = 1;
     }

@@ -71,7 +71,8 @@ FaultResult fault_edges(const Options& o) {
   bool ok = true;
   for (auto [p, n] : {std::pair<WorkerId, ItemId>{1, 200}, {8, 3}, {4, 0}}) {
     StealingScheduler<Fenced, ChaosBackend> s({.workers = p, .items = n, .seed = o.seed});
-    const Watchdog dog = watch_workers(s, "frontsteal-stress: fault edges, P=" + std::to_string(p) + " N=" + std::to_string(n));
+    const Watchdog dog =
+        watch_workers(s, "frontsteal-stress: fault edges, P=" + std::to_string(p) + " N=" + std::to_string(n));
     ExecutionCounter runs(n);
     std::uint64_t bad = 0;
     for (int f = 0; f < 300; ++f) {

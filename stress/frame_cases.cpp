@@ -75,7 +75,8 @@ CaseResult run_case(const TargetInfo& t, WorkerId p, const Options& o, std::uint
     r.skipped += st.totals().items_skipped;
     if (!o.quiet && std::chrono::steady_clock::now() - last_report > std::chrono::seconds(5)) {
       last_report = std::chrono::steady_clock::now();
-      std::fprintf(stderr, "    ... %s P=%u: %llu frames\n", t.name.c_str(), p, static_cast<unsigned long long>(r.frames));
+      std::fprintf(stderr, "    ... %s P=%u: %llu frames\n", t.name.c_str(), p,
+                   static_cast<unsigned long long>(r.frames));
     }
   }
   r.seconds = elapsed();

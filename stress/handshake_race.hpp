@@ -25,24 +25,25 @@ namespace frontsteal::stress {
 
 struct HandshakeRaceResult {
   std::uint64_t rounds = 0;
-  std::uint64_t steals_kept = 0;      // rounds in which the thief kept a non-empty share
-  std::uint64_t skipped = 0;          // items the thief dropped after its re-read of Front
-  std::uint64_t duplicates = 0;       // items claimed by the owner and kept by the thief in the same round
+  std::uint64_t steals_kept = 0;  // rounds in which the thief kept a non-empty share
+  std::uint64_t skipped = 0;      // items the thief dropped after its re-read of Front
+  std::uint64_t duplicates = 0;   // items claimed by the owner and kept by the thief in the same round
   std::uint64_t rounds_with_duplicates = 0;
   double seconds = 0;
   double duplicates_per_million_rounds() const { return rounds ? 1e6 * duplicates / static_cast<double>(rounds) : 0; }
 };
 
 template <class Policy, class Backend = StdBackend>
-HandshakeRaceResult race_handshake(std::uint64_t rounds, ItemId items, std::uint32_t work_per_item, double max_seconds) {
+HandshakeRaceResult race_handshake(std::uint64_t rounds, ItemId items, std::uint32_t work_per_item,
+                                   double max_seconds) {
   StealingWorkers<Backend, Policy> core(2, items, 1);
   auto& owner = core.owner(0);
   auto& thief = core.thief(1);
   auto& slot = core.slot(0);
   const RangeList list{{0, items}};
 
-  std::atomic<std::uint64_t> go{0};     // round number released by the owner after installing
-  std::atomic<std::uint64_t> done{0};   // round number the thief has finished
+  std::atomic<std::uint64_t> go{0};    // round number released by the owner after installing
+  std::atomic<std::uint64_t> done{0};  // round number the thief has finished
   std::atomic<bool> stop{false};
   std::vector<std::uint8_t> kept_by_thief(items, 0);
   HandshakeRaceResult r;

@@ -50,7 +50,7 @@ struct CaseResult {
   bool negative_control = false;
   std::uint64_t frames = 0, updates = 0, driver_waits = 0;
   std::uint64_t torn = 0, reuse = 0, backwards = 0;
-  double seconds = 0;  // for a negative control: until the first catch
+  double seconds = 0;                          // for a negative control: until the first catch
   std::map<std::uint64_t, std::uint64_t> lag;  // frames behind the newest finished frame -> component draws
   bool passed() const { return negative_control ? (torn + reuse + backwards) > 0 : (torn + reuse + backwards) == 0; }
 };
@@ -74,7 +74,8 @@ struct TriangleCell<false> {
 // control: until the pusher catches it, at most o.control_seconds).
 template <class Policy>
 CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool negative_control) {
-  constexpr bool kPlain = !has(Policy::defects(), Defect::kReuseWithoutGrace) && !has(Policy::defects(), Defect::kPublishEachSurface);
+  constexpr bool kPlain =
+      !has(Policy::defects(), Defect::kReuseWithoutGrace) && !has(Policy::defects(), Defect::kPublishEachSurface);
   CaseResult r;
   r.policy = std::string(Policy::kName);
   r.threads = threads;
@@ -100,7 +101,7 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
   };
   std::atomic<std::uint64_t> newest_frame{0};
   std::atomic<bool> stop{false};
-  std::atomic<bool> caught{false};  // the pusher saw a violation: a negative control can end its case
+  std::atomic<bool> caught{false};       // the pusher saw a violation: a negative control can end its case
   chaos_settings() = {o.chaos, o.seed};  // before any thread of the case starts; reset after all have joined
 
   // The pusher reads every component's slot first and checks it again after "drawing" them all, so it holds
@@ -126,7 +127,8 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
       for (ComponentId c = 0; c < o.components; ++c) {
         if (held[c] == decltype(publication)::kNothing) continue;
         bool reused = writing[static_cast<std::size_t>(c) * slots + held[c]].load(std::memory_order::relaxed) != 0;
-        for (std::uint32_t i = 0; i < sizes[c]; ++i) reused = reused || (!torn[c] && cell(c, held[c], i).read() != first[c]);
+        for (std::uint32_t i = 0; i < sizes[c]; ++i)
+          reused = reused || (!torn[c] && cell(c, held[c], i).read() != first[c]);
         r.torn += torn[c];
         r.reuse += reused;
         r.backwards += first[c] < last[c];
@@ -142,8 +144,9 @@ CaseResult run_case(const Options& o, WorkerId threads, SlotIndex slots, bool ne
   {
     StealingScheduler<Fenced, ChaosBackend> scheduler({.workers = threads, .items = surfaces, .seed = o.seed});
     // A frame that stops moving ends the run with every worker's state (stress/watchdog.hpp), not a ctest timeout.
-    const Watchdog dog = watch_workers(scheduler, "frontsteal-stress-publication: " + r.policy + ", P=" +
-                                                      std::to_string(threads) + ", slots=" + std::to_string(slots));
+    const Watchdog dog =
+        watch_workers(scheduler, "frontsteal-stress-publication: " + r.policy + ", P=" + std::to_string(threads) +
+                                     ", slots=" + std::to_string(slots));
     const auto start = std::chrono::steady_clock::now();
     const auto deadline = start + std::chrono::duration<double>(negative_control ? o.control_seconds : o.seconds);
     while (std::chrono::steady_clock::now() < deadline &&

@@ -26,7 +26,8 @@ namespace report = frontsteal::report;
 namespace {
 
 constexpr const char* kProgram = "frontsteal-stress-publication";
-constexpr const char* kDescription = R"(Stress test of greedy rendering's triangle publication and buffer reclamation on real threads with chaos: a
+constexpr const char* kDescription =
+    R"(Stress test of greedy rendering's triangle publication and buffer reclamation on real threads with chaos: a
 pusher that never waits, P tessellators (the stealing scheduler, Fenced), the caller as frame driver. Audits every
 pusher update for torn components, use of a slot after its reuse and components going back in time; the planted
 defects Broken:ReuseWithoutGrace and Broken:PublishEachSurface must be caught. Build with the tsan preset for
@@ -35,11 +36,20 @@ ThreadSanitizer's verdict on the triangle cells as well. Exits 1 on any unexpect
 Options parse(int argc, char** argv) {
   Options o;
   report::CommandLine cli(kProgram, kDescription);
-  cli.option("--seconds", o.seconds, "run time per case of the sound policy (per P x slots)")->check(CLI::Range(0.01, 3600.0));
-  cli.option("--control-seconds", o.control_seconds, "a negative control runs until its defect is caught; it fails "
-             "only if this many seconds pass first")->check(CLI::Range(0.01, 3600.0));
-  cli.app().add_option("--threads", o.threads, "tessellator counts, comma-separated")->delimiter(',')->check(CLI::Range(1u, 256u));
-  cli.app().add_option("--slots", o.slots, "slots per component, comma-separated")->delimiter(',')->check(CLI::Range(2, 16));
+  cli.option("--seconds", o.seconds, "run time per case of the sound policy (per P x slots)")
+      ->check(CLI::Range(0.01, 3600.0));
+  cli.option("--control-seconds", o.control_seconds,
+             "a negative control runs until its defect is caught; it fails "
+             "only if this many seconds pass first")
+      ->check(CLI::Range(0.01, 3600.0));
+  cli.app()
+      .add_option("--threads", o.threads, "tessellator counts, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, 256u));
+  cli.app()
+      .add_option("--slots", o.slots, "slots per component, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::Range(2, 16));
   cli.option("--components", o.components, "components (1..4 surfaces each, seeded)")->check(CLI::Range(1u, 100000u));
   cli.option("--chaos", o.chaos, "chaos injections per million labelled accesses")->check(CLI::Range(0u, 1000000u));
   cli.seed(o.seed, "component sizes and chaos");
@@ -74,11 +84,20 @@ std::vector<CaseResult> run_all(const Options& o) {
 }
 
 report::Table case_table(const std::vector<CaseResult>& results) {
-  report::Table t({{"policy", "policy", false}, {"threads", "P"}, {"slots", "slots"}, {"frames", "frames"},
-                   {"seconds", "seconds"}, {"updates", "updates"}, {"driver_waits", "driver waits"}, {"torn", "torn"},
-                   {"reuse", "reuse"}, {"backwards", "backwards"},
-                   {"lag", "lag histogram (frames behind: draws)", false}, {"negative_control", "control", false},
-                   {"passed", "passed", false}, {"verdict", "verdict", false}});
+  report::Table t({{"policy", "policy", false},
+                   {"threads", "P"},
+                   {"slots", "slots"},
+                   {"frames", "frames"},
+                   {"seconds", "seconds"},
+                   {"updates", "updates"},
+                   {"driver_waits", "driver waits"},
+                   {"torn", "torn"},
+                   {"reuse", "reuse"},
+                   {"backwards", "backwards"},
+                   {"lag", "lag histogram (frames behind: draws)", false},
+                   {"negative_control", "control", false},
+                   {"passed", "passed", false},
+                   {"verdict", "verdict", false}});
   for (const CaseResult& r : results) {
     std::ostringstream lag;
     report::Json lag_json = report::Json::object();
@@ -86,9 +105,11 @@ report::Table case_table(const std::vector<CaseResult>& results) {
       lag << (lag.tellp() > 0 ? ", " : "") << behind << ": " << n;
       lag_json[std::to_string(behind)] = n;
     }
-    const std::string catch_time = std::to_string(r.frames) + " frames, " + report::fixed_text(r.seconds * 1e3, 1) + " ms";
-    const std::string verdict = r.passed() ? (r.negative_control ? "caught (negative control) after " + catch_time : "ok")
-                                           : (r.negative_control ? "FAIL: negative control not caught in " + catch_time : "FAIL");
+    const std::string catch_time =
+        std::to_string(r.frames) + " frames, " + report::fixed_text(r.seconds * 1e3, 1) + " ms";
+    const std::string verdict =
+        r.passed() ? (r.negative_control ? "caught (negative control) after " + catch_time : "ok")
+                   : (r.negative_control ? "FAIL: negative control not caught in " + catch_time : "FAIL");
     t.add_row({r.policy, r.threads, r.slots, r.frames, report::Cell::fixed(r.seconds, 3), r.updates, r.driver_waits,
                r.torn, r.reuse, r.backwards, report::Cell::shown_as(lag.str(), lag_json), r.negative_control,
                r.passed(), verdict});

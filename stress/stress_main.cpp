@@ -25,7 +25,8 @@ namespace report = frontsteal::report;
 
 namespace {
 
-constexpr const char* kDescription = R"(Runs the stealing protocol on real threads for many frames and audits every item of every frame (lost = 0
+constexpr const char* kDescription =
+    R"(Runs the stealing protocol on real threads for many frames and audits every item of every frame (lost = 0
 always; duplicates = 0 for exactly-once policies, counted for at-least-once ones). Prints a histogram of
 outcomes per target and thread count, and writes markdown and JSON (stress.{md,json}, or rates.{md,json}).
 Exits 1 on a lost item, a duplicate under an exactly-once policy, a negative control that was not caught,
@@ -42,16 +43,20 @@ Modes:
 Options parse(int argc, char** argv) {
   Options o;
   report::CommandLine cli(kProgram, kDescription, kFooter);
-  cli.app().add_flag_callback("--list", [] {
-    for (const auto& t : targets()) {
-      std::cout << t.name << "  (" << name(t.contract) << (t.negative_control ? ", negative control" : "") << ")\n";
-    }
-    std::exit(0);
-  }, "list the targets and exit");
+  cli.app().add_flag_callback(
+      "--list",
+      [] {
+        for (const auto& t : targets()) {
+          std::cout << t.name << "  (" << name(t.contract) << (t.negative_control ? ", negative control" : "") << ")\n";
+        }
+        std::exit(0);
+      },
+      "list the targets and exit");
   cli.flag("--rates", o.rates, "measure duplicate rates (see Modes)");
   cli.option("--seconds", o.seconds, "time per case")->check(CLI::PositiveNumber);
   cli.option("--frames", o.frames, "frames per case instead of a time bound (0: use --seconds)");
-  cli.option("--control-seconds", o.control_seconds, "a negative control ignores --seconds and --frames: it runs "
+  cli.option("--control-seconds", o.control_seconds,
+             "a negative control ignores --seconds and --frames: it runs "
              "until its planted defect is caught (the first duplicate), and fails only if this many seconds pass first")
       ->check(CLI::PositiveNumber);
   cli.option("--items", o.items, "items per frame");
@@ -60,10 +65,14 @@ Options parse(int argc, char** argv) {
   auto all = targets();
   std::vector<std::string> names{"all"};
   for (const auto& t : all) names.push_back(t.name);
-  cli.app().add_option("--targets", o.targets, "comma-separated target names (see --list), or all [default all]")
-      ->delimiter(',')->check(CLI::IsMember(names).description("a name from --list"));
-  cli.app().add_option("--threads", o.threads, "comma-separated thread counts")
-      ->delimiter(',')->check(CLI::Range(1u, 256u));
+  cli.app()
+      .add_option("--targets", o.targets, "comma-separated target names (see --list), or all [default all]")
+      ->delimiter(',')
+      ->check(CLI::IsMember(names).description("a name from --list"));
+  cli.app()
+      .add_option("--threads", o.threads, "comma-separated thread counts")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, 256u));
   cli.seed(o.seed, "seed of costs and chaos");
   cli.out(o.out);
   cli.option("--rounds", o.rounds, "handshake-race rounds per policy in --rates");
@@ -88,6 +97,7 @@ int main(int argc, char** argv) {
     std::cerr << kProgram << ": " << e.what() << "\n";
     return 1;
   }
-  std::printf("\n%s in %.1f s; results in %s\n", r.all_ok ? "all cases as expected" : "FAILURES", seconds, o.out.c_str());
+  std::printf("\n%s in %.1f s; results in %s\n", r.all_ok ? "all cases as expected" : "FAILURES", seconds,
+              o.out.c_str());
   return r.all_ok ? 0 : 1;
 }

@@ -25,7 +25,10 @@ StressReport run_suite(const Options& o, std::chrono::steady_clock::time_point s
       continue;
     }
     for (WorkerId p : o.threads) {
-      if (!o.quiet) std::fprintf(stderr, "[%6.1fs] %s, P=%u\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), t.name.c_str(), p);
+      if (!o.quiet)
+        std::fprintf(stderr, "[%6.1fs] %s, P=%u\n",
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), t.name.c_str(),
+                     p);
       CaseResult c = run_case(t, p, o, 1);
       print_case(c);
       r.all_ok = r.all_ok && c.passed;
@@ -44,15 +47,16 @@ StressReport run_suite(const Options& o, std::chrono::steady_clock::time_point s
           row.duplicated += a.duplicated;
         }
         caught += row.duplicated;
-        row.passed = row.lost == 0 && (t.negative_control || t.contract == Contract::kAtLeastOnce || row.duplicated == 0);
+        row.passed =
+            row.lost == 0 && (t.negative_control || t.contract == Contract::kAtLeastOnce || row.duplicated == 0);
         r.all_ok = r.all_ok && row.passed;
         r.scenario_rows.push_back(row);
       }
       // The frame-level cases above are where a negative control must be caught (the run fails otherwise);
       // these tiny scenarios rarely line a claim up with a steal, so here it is reported, not required.
-      std::printf("scenarios %-30s %s\n", t.name.c_str(),
-                  t.negative_control ? (caught ? "negative control caught" : "negative control not caught here")
-                                     : "ran");
+      std::printf(
+          "scenarios %-30s %s\n", t.name.c_str(),
+          t.negative_control ? (caught ? "negative control caught" : "negative control not caught here") : "ran");
     }
   }
   if (o.targets.empty()) {
@@ -74,10 +78,11 @@ StressReport run_rates(const Options& o) {
   auto race = [&](const std::string& name, auto run) {
     HandshakeRaceResult x = run();
     if (!o.quiet) {
-      std::printf("race %-32s %9llu rounds  %7llu duplicates  %10.2f per 1e6 rounds  (%llu steals kept, %llu skipped)\n",
-                  name.c_str(), static_cast<unsigned long long>(x.rounds), static_cast<unsigned long long>(x.duplicates),
-                  x.duplicates_per_million_rounds(), static_cast<unsigned long long>(x.steals_kept),
-                  static_cast<unsigned long long>(x.skipped));
+      std::printf(
+          "race %-32s %9llu rounds  %7llu duplicates  %10.2f per 1e6 rounds  (%llu steals kept, %llu skipped)\n",
+          name.c_str(), static_cast<unsigned long long>(x.rounds), static_cast<unsigned long long>(x.duplicates),
+          x.duplicates_per_million_rounds(), static_cast<unsigned long long>(x.steals_kept),
+          static_cast<unsigned long long>(x.skipped));
       std::fflush(stdout);
     }
     r.races.push_back({name, x});
@@ -92,11 +97,12 @@ StressReport run_rates(const Options& o) {
   }
   for (const auto& table : tables) {
     model::current_table() = table;
-    race(table.name, [&] { return race_handshake<model::TablePolicy>(o.rounds, o.race_items, o.race_work, race_seconds); });
+    race(table.name,
+         [&] { return race_handshake<model::TablePolicy>(o.rounds, o.race_items, o.race_work, race_seconds); });
   }
   for (const auto& row : r.races) {  // exactly-once policies must show none, here too
-    const bool exact = row.policy == "SeqCst" || row.policy == "Fenced" || row.policy == "Minimal" ||
-                       row.policy == "Asymmetric";
+    const bool exact =
+        row.policy == "SeqCst" || row.policy == "Fenced" || row.policy == "Minimal" || row.policy == "Asymmetric";
     if (exact && row.result.duplicates > 0) r.all_ok = false;
   }
   for (const auto& t : rate_targets) {
@@ -114,7 +120,8 @@ StressReport run_rates(const Options& o) {
     for (WorkerId p : o.threads) {
       CaseResult c = run_case(table_target(table), p, o, 0);
       c.passed = c.lost == 0;
-      c.verdict = c.lost ? "lost items (this mutant loses work)" : (c.duplicated ? "duplicates measured" : "no duplicate seen");
+      c.verdict =
+          c.lost ? "lost items (this mutant loses work)" : (c.duplicated ? "duplicates measured" : "no duplicate seen");
       if (!o.quiet) print_case(c);
       r.cases.push_back(c);
     }

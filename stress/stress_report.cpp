@@ -13,10 +13,15 @@ namespace frontsteal::stress {
 namespace {
 
 report::Table race_table(const std::vector<RaceRow>& races, const Options& o) {
-  report::Table t({{"policy", "policy", false}, {"rounds", "rounds"}, {"items_per_round", "items per round"},
-                   {"steals_kept", "steals kept"}, {"skipped", "items skipped after re-read"},
-                   {"duplicates", "duplicates"}, {"rounds_with_duplicates", "rounds with duplicates"},
-                   {"duplicates_per_million_rounds", "duplicates per 1e6 rounds"}, {"seconds", "seconds"}});
+  report::Table t({{"policy", "policy", false},
+                   {"rounds", "rounds"},
+                   {"items_per_round", "items per round"},
+                   {"steals_kept", "steals kept"},
+                   {"skipped", "items skipped after re-read"},
+                   {"duplicates", "duplicates"},
+                   {"rounds_with_duplicates", "rounds with duplicates"},
+                   {"duplicates_per_million_rounds", "duplicates per 1e6 rounds"},
+                   {"seconds", "seconds"}});
   for (const auto& row : races) {
     const auto& x = row.result;
     t.add_row({row.policy, x.rounds, o.race_items, x.steals_kept, x.skipped, x.duplicates, x.rounds_with_duplicates,
@@ -26,23 +31,39 @@ report::Table race_table(const std::vector<RaceRow>& races, const Options& o) {
 }
 
 report::Table case_table(const std::vector<CaseResult>& cases) {
-  report::Table t({{"target", "target", false}, {"contract", "contract", false}, {"threads", "P"},
-                   {"frames", "frames"}, {"seconds", "seconds"}, {"frames_with_0_duplicates", "0 dup"},
-                   {"frames_with_1_duplicate", "1 dup"}, {"frames_with_2plus_duplicates", "2+ dup"}, {"lost", "lost"},
-                   {"duplicated", "duplicated"}, {"duplicates_per_million_items", "dup per 1e6 items"},
-                   {"steals", "steals"}, {"skipped", "skipped"}, {"chaos_injections", "chaos"},
-                   {"negative_control", "control", false}, {"passed", "passed", false}, {"verdict", "verdict", false}});
+  report::Table t({{"target", "target", false},
+                   {"contract", "contract", false},
+                   {"threads", "P"},
+                   {"frames", "frames"},
+                   {"seconds", "seconds"},
+                   {"frames_with_0_duplicates", "0 dup"},
+                   {"frames_with_1_duplicate", "1 dup"},
+                   {"frames_with_2plus_duplicates", "2+ dup"},
+                   {"lost", "lost"},
+                   {"duplicated", "duplicated"},
+                   {"duplicates_per_million_items", "dup per 1e6 items"},
+                   {"steals", "steals"},
+                   {"skipped", "skipped"},
+                   {"chaos_injections", "chaos"},
+                   {"negative_control", "control", false},
+                   {"passed", "passed", false},
+                   {"verdict", "verdict", false}});
   for (const auto& c : cases) {
-    t.add_row({c.target, c.contract, c.threads, c.frames, report::Cell::fixed(c.seconds, 3), c.frames_dup0, c.frames_dup1,
-               c.frames_dup2plus, c.lost, c.duplicated, report::Cell::fixed(c.duplicates_per_million_items(), 3), c.steals,
-               c.skipped, c.chaos, c.negative_control, c.passed, c.verdict});
+    t.add_row({c.target, c.contract, c.threads, c.frames, report::Cell::fixed(c.seconds, 3), c.frames_dup0,
+               c.frames_dup1, c.frames_dup2plus, c.lost, c.duplicated,
+               report::Cell::fixed(c.duplicates_per_million_items(), 3), c.steals, c.skipped, c.chaos,
+               c.negative_control, c.passed, c.verdict});
   }
   return t;
 }
 
 report::Table scenario_table(const std::vector<ScenarioRow>& rows) {
-  report::Table t({{"target", "target", false}, {"scenario", "scenario", false}, {"runs", "runs"}, {"lost", "lost"},
-                   {"duplicated", "duplicated"}, {"passed", "result", false}});
+  report::Table t({{"target", "target", false},
+                   {"scenario", "scenario", false},
+                   {"runs", "runs"},
+                   {"lost", "lost"},
+                   {"duplicated", "duplicated"},
+                   {"passed", "result", false}});
   for (const auto& r : rows) {
     t.add_row({r.target, r.scenario, r.runs, r.lost, r.duplicated,
                report::Cell::shown_as(r.passed ? "as expected" : "**FAIL**", r.passed)});
@@ -52,7 +73,8 @@ report::Table scenario_table(const std::vector<ScenarioRow>& rows) {
 
 report::Table fault_table(const std::vector<FaultResult>& faults) {
   report::Table t({{"fault", "fault", false}, {"passed", "result", false}, {"detail", "detail", false}});
-  for (const auto& f : faults) t.add_row({f.name, report::Cell::shown_as(f.passed ? "pass" : "**FAIL**", f.passed), f.detail});
+  for (const auto& f : faults)
+    t.add_row({f.name, report::Cell::shown_as(f.passed ? "pass" : "**FAIL**", f.passed), f.detail});
   return t;
 }
 
@@ -77,14 +99,19 @@ void write_results(const Options& o, const StressReport& r, double seconds) {
      << o.items << "; chaos " << (o.rates ? 0 : o.chaos) << " per million labelled accesses; seed " << o.seed << "; "
      << (o.frames ? std::to_string(o.frames) + " frames" : report::fixed_text(o.seconds, 1) + " s")
      << " per case; a negative control runs until it is caught (at most " << report::fixed_text(o.control_seconds, 0)
-     << " s), so its frames and seconds are the time to the first duplicate.\n\n" << case_table(r.cases).markdown();
+     << " s), so its frames and seconds are the time to the first duplicate.\n\n"
+     << case_table(r.cases).markdown();
   if (!r.scenario_rows.empty()) {
-    md << "\n## The model checker's scenarios on real threads\n\nThe configurations of models_check/scenarios.hpp, each "
+    md << "\n## The model checker's scenarios on real threads\n\nThe configurations of models_check/scenarios.hpp, "
+          "each "
        << "run " << o.scenario_runs << " times per target (for the negative controls a duplicate here is a catch, but "
-       << "not required: the frame-level cases above must catch them).\n\n" << scenario_table(r.scenario_rows).markdown();
+       << "not required: the frame-level cases above must catch them).\n\n"
+       << scenario_table(r.scenario_rows).markdown();
   }
   if (!r.faults.empty()) md << "\n## Faults\n\n" << fault_table(r.faults).markdown();
-  md << "\n" << (r.all_ok ? "All cases as expected" : "**Some cases failed**") << "; total " << report::fixed_text(seconds, 1) << " s.\n";
+  md << "\n"
+     << (r.all_ok ? "All cases as expected" : "**Some cases failed**") << "; total " << report::fixed_text(seconds, 1)
+     << " s.\n";
   dir.write(o.rates ? "rates.md" : "stress.md", md.str());
 
   report::Json js = report::document(kProgram, 2, "measured", FRONTSTEAL_GIT_COMMIT);

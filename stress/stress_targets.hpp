@@ -125,13 +125,17 @@ inline std::vector<TargetInfo> scheduler_targets() {
   for (const sched::SchedulerInfo& info : sched::scheduler_registry()) {
     if (info.name.rfind("stealing/", 0) == 0) continue;
     if (kUnderThreadSanitizer && !info.tsan_clean) continue;
-    all.push_back({info.name, info.contract, false,
+    all.push_back({info.name,
+                   info.contract,
+                   false,
                    [&info](WorkerId p, ItemId n, std::uint64_t seed) -> std::unique_ptr<StressTarget> {
                      return std::make_unique<SchedulerTarget>(info.make({.workers = p, .items = n, .seed = seed}, {}));
                    },
                    {}});
   }
-  all.push_back({"counter-racy", Contract::kExactlyOnce, true,
+  all.push_back({"counter-racy",
+                 Contract::kExactlyOnce,
+                 true,
                  [](WorkerId p, ItemId n, std::uint64_t) -> std::unique_ptr<StressTarget> {
                    return std::make_unique<SchedulerTarget>(std::make_unique<RacyCounterScheduler>(p, n));
                  },
@@ -141,8 +145,7 @@ inline std::vector<TargetInfo> scheduler_targets() {
 
 template <class Policy, class Backend = ChaosBackend>
 TargetInfo stealing_target() {
-  return {std::string("stealing/") + std::string(Policy::kName), Policy::kContract,
-          Policy::defects() != Defect::kNone,
+  return {std::string("stealing/") + std::string(Policy::kName), Policy::kContract, Policy::defects() != Defect::kNone,
           [](WorkerId p, ItemId n, std::uint64_t seed) -> std::unique_ptr<StressTarget> {
             return std::make_unique<StealingTarget<Policy, Backend>>(p, n, seed);
           },
@@ -152,9 +155,12 @@ TargetInfo stealing_target() {
 }
 
 inline std::vector<TargetInfo> targets() {
-  std::vector<TargetInfo> all{stealing_target<SeqCst>(),           stealing_target<Paper>(),
-                              stealing_target<Fenced>(),           stealing_target<Minimal>(),
-                              stealing_target<BrokenSkipsReread>(), stealing_target<BrokenNoTransient>()};
+  std::vector<TargetInfo> all{stealing_target<SeqCst>(),
+                              stealing_target<Paper>(),
+                              stealing_target<Fenced>(),
+                              stealing_target<Minimal>(),
+                              stealing_target<BrokenSkipsReread>(),
+                              stealing_target<BrokenNoTransient>()};
   if (membarrier_status().available) all.insert(all.begin() + 3, stealing_target<Asymmetric>());
   for (auto& t : scheduler_targets()) all.push_back(std::move(t));
   return all;

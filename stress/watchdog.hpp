@@ -161,8 +161,8 @@ class Watchdog {
     // included) was not running — SIGSTOP, CPU throttling, a starved machine. The workers were paused with it,
     // so the gap is not their stall: the clock restarts. (Half the bound, not a few poll periods: on a loaded
     // machine this thread is often late by hundreds of milliseconds, and that must not hide a real hang.)
-    const bool paused = had_sample_ && std::chrono::duration<double>(now - last_sample_at_).count() >=
-                                           options_.stall_seconds / 2;
+    const bool paused =
+        had_sample_ && std::chrono::duration<double>(now - last_sample_at_).count() >= options_.stall_seconds / 2;
     last_sample_at_ = now;
     if (!s.busy || !had_sample_ || paused || s.progress != last_) {  // WD1: idle, first sample, pause, or progress
       had_sample_ = s.busy;

@@ -49,7 +49,8 @@ inline Camera camera_on_path(const Box& box, int frame, int frames, int width = 
     cam.target = centre;
     return cam;
   }
-  const double t = frames - orbit_frames > 1 ? static_cast<double>(frame - orbit_frames) / (frames - orbit_frames - 1) : 1.0;
+  const double t =
+      frames - orbit_frames > 1 ? static_cast<double>(frame - orbit_frames) / (frames - orbit_frames - 1) : 1.0;
   const glm::dvec3 focus = box.lo + 0.08 * extent + glm::dvec3(0, 0, 0.3 * extent.z);
   const glm::dvec3 start = centre + radius * glm::dvec3(1.6, 0.0, 0.9);
   const glm::dvec3 end = focus + 0.03 * radius * glm::dvec3(1.0, -1.0, 0.6);
@@ -103,7 +104,8 @@ inline DenseRegion densest_region(const Model& m, double parts = 1.0) {
     const Box b = control_box(s.patch);
     diagonals.push_back(glm::length(b.hi - b.lo));
   }
-  std::nth_element(diagonals.begin(), diagonals.begin() + static_cast<std::ptrdiff_t>(diagonals.size() / 2), diagonals.end());
+  std::nth_element(diagonals.begin(), diagonals.begin() + static_cast<std::ptrdiff_t>(diagonals.size() / 2),
+                   diagonals.end());
   double edge = parts * diagonals[diagonals.size() / 2];
   if (!(edge > 0)) edge = std::max({extent.x, extent.y, extent.z, 1e-300}) / 96;
   best.cell_edge = edge;

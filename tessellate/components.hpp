@@ -95,7 +95,8 @@ inline int assign_components(Model& model, double tolerance, int samples_per_edg
   std::vector<std::pair<std::size_t, std::size_t>> cells;
   for (std::size_t k = 0; k < samples.size();) {
     std::size_t e = k + 1;
-    for (; e < samples.size() && samples[e].key == samples[k].key; ++e) sets.unite(samples[k].surface, samples[e].surface);
+    for (; e < samples.size() && samples[e].key == samples[k].key; ++e)
+      sets.unite(samples[k].surface, samples[e].surface);
     cells.emplace_back(k, e);
     k = e;
   }

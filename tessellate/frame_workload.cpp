@@ -6,8 +6,11 @@
 namespace frontsteal::tess {
 
 FrameWorkload::FrameWorkload(PathScene& scene, WorkerId workers)
-    : scene_(&scene), scratch_(std::max<WorkerId>(1, workers)), triangles_(scene.surfaces(), 0),
-      inconsistent_(scene.surfaces(), 0), capped_(scene.surfaces(), 0) {}
+    : scene_(&scene),
+      scratch_(std::max<WorkerId>(1, workers)),
+      triangles_(scene.surfaces(), 0),
+      inconsistent_(scene.surfaces(), 0),
+      capped_(scene.surfaces(), 0) {}
 
 void FrameWorkload::prepare_workers(WorkerId workers) {
   if (scratch_.size() < workers) scratch_.resize(workers);
@@ -29,9 +32,8 @@ std::uint64_t FrameWorkload::frame_triangles() const {
 
 std::string FrameWorkload::first_inconsistent() const {
   const auto it = std::find(inconsistent_.begin(), inconsistent_.end(), std::uint8_t{1});
-  return it == inconsistent_.end()
-             ? std::string()
-             : scene_->model.surfaces[static_cast<std::size_t>(it - inconsistent_.begin())].name;
+  return it == inconsistent_.end() ? std::string()
+                                   : scene_->model.surfaces[static_cast<std::size_t>(it - inconsistent_.begin())].name;
 }
 
 std::uint64_t FrameWorkload::count(const std::vector<std::uint8_t>& flags) {

@@ -23,8 +23,8 @@ inline constexpr int kRowLanes = 8;
 inline int padded_row(int count) noexcept { return (count + kRowLanes - 1) / kRowLanes * kRowLanes; }
 
 // Structure-of-arrays view of a row's work. `basis`/`derivative`: (degree_v+1) rows of padded_row(count)
-// floats, row k = B_k(v_j) / B_k'(v_j) for j = 0..count-1 (then padding). `value`/`du`: the row's collapsed homogeneous control
-// values R_k and their u-derivatives, as (x, y, z, w). Outputs: `position` and `normal` interleaved (x, y, z
+// floats, row k = B_k(v_j) / B_k'(v_j) for j = 0..count-1 (then padding). `value`/`du`: the row's collapsed homogeneous
+// control values R_k and their u-derivatives, as (x, y, z, w). Outputs: `position` and `normal` interleaved (x, y, z
 // per vertex), `degenerate[j]` = 1 where the normal vanished (0 otherwise).
 struct RowKernelArgs {
   int degree_v = 0;

@@ -140,9 +140,11 @@ inline void tessellate_untrimmed_float(const BezierPatch& patch, StepSizes steps
     args.normal = &out.normals[first].x;
     evaluate_row_float(args);
     for (int j = 0; j <= nv; ++j) {
-      out.uvs[first + static_cast<std::size_t>(j)] = glm::vec2(static_cast<float>(u), static_cast<float>(j) / static_cast<float>(nv));
+      out.uvs[first + static_cast<std::size_t>(j)] =
+          glm::vec2(static_cast<float>(u), static_cast<float>(j) / static_cast<float>(nv));
       if (scratch.degenerate[static_cast<std::size_t>(j)]) [[unlikely]] {  // collapsed edge
-        out.normals[first + static_cast<std::size_t>(j)] = glm::vec3(evaluate(patch, u, static_cast<double>(j) / nv).normal);
+        out.normals[first + static_cast<std::size_t>(j)] =
+            glm::vec3(evaluate(patch, u, static_cast<double>(j) / nv).normal);
       }
     }
   }
@@ -173,7 +175,8 @@ inline void tessellate_untrimmed(const BezierPatch& patch, StepSizes steps, Tria
     for (int j = 0; j <= nv; ++j) {
       const double v = static_cast<double>(j) / nv;
       SurfacePoint sp = row.at(patch.degree_v, v_basis_scratch[j]);
-      if (sp.normal == glm::dvec3(0.0)) [[unlikely]] sp.normal = evaluate(patch, u, v).normal;  // collapsed edge
+      if (sp.normal == glm::dvec3(0.0)) [[unlikely]]
+        sp.normal = evaluate(patch, u, v).normal;  // collapsed edge
       *position++ = glm::vec3(sp.position);
       *normal++ = glm::vec3(sp.normal);
       *uv++ = glm::vec2(static_cast<float>(u), static_cast<float>(v));

@@ -30,7 +30,8 @@ namespace fsys = std::filesystem;
 namespace report = frontsteal::report;
 
 constexpr const char* kProgram = "frontsteal-import";
-constexpr const char* kDescription = "frontsteal-import — CAD files (STEP, IGES, BREP) into a frontsteal model, through Open CASCADE.";
+constexpr const char* kDescription =
+    "frontsteal-import — CAD files (STEP, IGES, BREP) into a frontsteal model, through Open CASCADE.";
 constexpr const char* kFooter = R"(
 Every face is converted to B-splines (BRepBuilderAPI_NurbsConvert), split at its knots into rational Bézier
 patches (degree <= 7 each way; higher-degree faces are skipped), and its trim loops (the wires' p-curves,
@@ -55,14 +56,18 @@ struct Options {
 Options parse(int argc, char** argv) {
   Options o;
   report::CommandLine cli(kProgram, kDescription, kFooter);
-  cli.app().add_option("IN", o.inputs, ".step/.stp, .iges/.igs or .brep files (chosen by extension, any case)")
+  cli.app()
+      .add_option("IN", o.inputs, ".step/.stp, .iges/.igs or .brep files (chosen by extension, any case)")
       ->required();
-  cli.app().add_option("-o,--output", o.output, "the model to write (native format: tessellate/model_format.hpp)")
-      ->required()->check(CLI::Validator([](std::string& f) { return f.empty() ? "needs a file name" : ""; }, ""));
+  cli.app()
+      .add_option("-o,--output", o.output, "the model to write (native format: tessellate/model_format.hpp)")
+      ->required()
+      ->check(CLI::Validator([](std::string& f) { return f.empty() ? "needs a file name" : ""; }, ""));
   cli.option("--report", o.report, "also write the per-file reports as JSON")
       ->check(CLI::Validator([](std::string& f) { return f.empty() ? "needs a file name" : ""; }, ""));
   cli.option("--samples", o.samples, "trim-curve samples per knot span of a p-curve")->check(CLI::Range(1, 1000));
-  cli.option("--time-limit", o.limits.time_limit_s, "seconds one file's reader may run")->check(CLI::Range(0.1, 86400.0));
+  cli.option("--time-limit", o.limits.time_limit_s, "seconds one file's reader may run")
+      ->check(CLI::Range(0.1, 86400.0));
   cli.option("--memory-limit", o.limits.memory_limit_mb, "resident memory one file's reader may use, MiB")
       ->check(CLI::Range(16.0, 1e7));
   cli.parse(argc, argv);
@@ -84,9 +89,16 @@ struct FileResult {
 };
 
 report::Table file_table(const std::vector<FileResult>& results) {
-  report::Table t({{"file", "file", false}, {"faces", "faces"}, {"faces_imported", "imported"}, {"patches", "patches"},
-                   {"surfaces", "surfaces"}, {"trim_loops", "loops"}, {"loops_reoriented", "reorient"},
-                   {"corner_loops_cut", "corners"}, {"skipped_count", "skipped"}, {"seconds", "seconds"}});
+  report::Table t({{"file", "file", false},
+                   {"faces", "faces"},
+                   {"faces_imported", "imported"},
+                   {"patches", "patches"},
+                   {"surfaces", "surfaces"},
+                   {"trim_loops", "loops"},
+                   {"loops_reoriented", "reorient"},
+                   {"corner_loops_cut", "corners"},
+                   {"skipped_count", "skipped"},
+                   {"seconds", "seconds"}});
   for (const FileResult& f : results) {
     const tess::ImportReport& r = f.report;
     t.add_row({fsys::path(r.file).filename().string(), r.faces, r.faces_imported, r.patches, r.surfaces, r.trim_loops,
@@ -118,7 +130,8 @@ report::Json report_json(const Options& opt, const std::vector<FileResult>& resu
     f["file"] = r.file;  // the path as given, not only its name
     f["warnings"] = r.warnings;
     f["skipped_by_reason"] = report::Json::array();
-    for (const auto& [reason, count] : by_reason(r)) f["skipped_by_reason"].push_back({{"reason", reason}, {"count", count}});
+    for (const auto& [reason, count] : by_reason(r))
+      f["skipped_by_reason"].push_back({{"reason", reason}, {"count", count}});
     f["skipped"] = report::Json::array();
     for (const tess::ImportSkip& s : r.skipped) f["skipped"].push_back({{"face", s.face}, {"reason", s.reason}});
     files.push_back(std::move(f));

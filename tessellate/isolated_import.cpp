@@ -90,7 +90,8 @@ ImportReport import_cad_file_isolated(const std::string& path, Model& out, const
     throw std::invalid_argument("IsolationLimits: time and memory limits must be > 0");
   }
   int fds[2];
-  if (::pipe(fds) != 0) throw ImportFailure(ImportFailure::Cause::protocol, path + ": cannot create a pipe: " + std::strerror(errno));
+  if (::pipe(fds) != 0)
+    throw ImportFailure(ImportFailure::Cause::protocol, path + ": cannot create a pipe: " + std::strerror(errno));
   std::cout.flush();
   std::cerr.flush();
   std::fflush(nullptr);
@@ -98,7 +99,8 @@ ImportReport import_cad_file_isolated(const std::string& path, Model& out, const
   if (child < 0) {
     ::close(fds[0]);
     ::close(fds[1]);
-    throw ImportFailure(ImportFailure::Cause::protocol, path + ": cannot start the reader process: " + std::strerror(errno));
+    throw ImportFailure(ImportFailure::Cause::protocol,
+                        path + ": cannot start the reader process: " + std::strerror(errno));
   }
   if (child == 0) {
     ::close(fds[0]);
@@ -148,27 +150,30 @@ ImportReport import_cad_file_isolated(const std::string& path, Model& out, const
   }
   if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
-    throw ImportFailure(ImportFailure::Cause::crashed, path + ": " + reader + " crashed (signal " + std::to_string(sig) +
-                                                           ", SIG" + sigabbrev_np(sig) + ") reading this file");
+    throw ImportFailure(ImportFailure::Cause::crashed, path + ": " + reader + " crashed (signal " +
+                                                           std::to_string(sig) + ", SIG" + sigabbrev_np(sig) +
+                                                           ") reading this file");
   }
   std::istringstream in(text);
   std::string line;
   if (!std::getline(in, line)) {  // it exited without a word: as much a crash as a signal
     throw ImportFailure(ImportFailure::Cause::crashed, path + ": " + reader + " crashed (exit status " +
-                                                           std::to_string(WEXITSTATUS(status)) + ", no result) reading this file");
+                                                           std::to_string(WEXITSTATUS(status)) +
+                                                           ", no result) reading this file");
   }
   if (line.starts_with("error ")) {
     const std::string why = line.substr(6);
-    throw ImportFailure(why == "out of memory" ? ImportFailure::Cause::out_of_memory : ImportFailure::Cause::reader_error,
-                        why == "out of memory" ? path + ": " + reader + " ran out of memory" : why);
+    throw ImportFailure(
+        why == "out of memory" ? ImportFailure::Cause::out_of_memory : ImportFailure::Cause::reader_error,
+        why == "out of memory" ? path + ": " + reader + " ran out of memory" : why);
   }
   ImportReport report;
   report.file = path;
   {
     std::istringstream r(line);
     std::string word;
-    if (!(r >> word >> report.faces >> report.faces_imported >> report.patches >> report.surfaces >> report.trim_loops >>
-          report.loops_reoriented >> report.corner_loops_cut) ||
+    if (!(r >> word >> report.faces >> report.faces_imported >> report.patches >> report.surfaces >>
+          report.trim_loops >> report.loops_reoriented >> report.corner_loops_cut) ||
         word != "report") {
       throw ImportFailure(ImportFailure::Cause::protocol, path + ": garbled result from the reader process");
     }
@@ -188,7 +193,8 @@ ImportReport import_cad_file_isolated(const std::string& path, Model& out, const
   try {
     imported = parse_model(in, path + " (imported)");
   } catch (const ModelError& e) {
-    throw ImportFailure(ImportFailure::Cause::protocol, std::string("the imported surfaces failed the native checks: ") + e.what());
+    throw ImportFailure(ImportFailure::Cause::protocol,
+                        std::string("the imported surfaces failed the native checks: ") + e.what());
   }
   if (out.name.empty()) out.name = imported.name;
   for (Surface& s : imported.surfaces) out.surfaces.push_back(std::move(s));

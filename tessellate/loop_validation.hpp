@@ -55,7 +55,8 @@ inline bool segments_meet(const glm::dvec2& a, const glm::dvec2& b, const glm::d
   const double d1 = orient(a, b, c), d2 = orient(a, b, d), d3 = orient(c, d, a), d4 = orient(c, d, b);
   if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
   const auto on = [](const glm::dvec2& p, const glm::dvec2& q, const glm::dvec2& r) {
-    return std::min(p.x, q.x) <= r.x && r.x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= r.y && r.y <= std::max(p.y, q.y);
+    return std::min(p.x, q.x) <= r.x && r.x <= std::max(p.x, q.x) && std::min(p.y, q.y) <= r.y &&
+           r.y <= std::max(p.y, q.y);
   };
   return (d1 == 0 && on(a, b, c)) || (d2 == 0 && on(a, b, d)) || (d3 == 0 && on(c, d, a)) || (d4 == 0 && on(c, d, b));
 }
@@ -131,7 +132,8 @@ inline std::optional<LoopDefect> find_loop_defect(const std::vector<std::vector<
   std::vector<glm::dvec4> box(loops.size());  // (u_lo, v_lo, u_hi, v_hi)
   for (std::size_t l = 0; l < loops.size(); ++l) {
     box[l] = {1e300, 1e300, -1e300, -1e300};
-    for (const glm::dvec2& p : loops[l]) box[l] = {std::min(box[l].x, p.x), std::min(box[l].y, p.y), std::max(box[l].z, p.x), std::max(box[l].w, p.y)};
+    for (const glm::dvec2& p : loops[l])
+      box[l] = {std::min(box[l].x, p.x), std::min(box[l].y, p.y), std::max(box[l].z, p.x), std::max(box[l].w, p.y)};
   }
   const auto in_box = [&](std::size_t l, const glm::dvec2& p) {
     return box[l].x <= p.x && p.x <= box[l].z && box[l].y <= p.y && p.y <= box[l].w;
@@ -143,7 +145,8 @@ inline std::optional<LoopDefect> find_loop_defect(const std::vector<std::vector<
       return LoopDefect{LoopDefect::Kind::hole_outside, h, 0, p};
     }
     for (std::size_t g = 1; g < loops.size(); ++g) {
-      if (g != h && in_box(g, p) && detail::winding(loops[g], p) != 0) return LoopDefect{LoopDefect::Kind::nested_hole, h, g, p};
+      if (g != h && in_box(g, p) && detail::winding(loops[g], p) != 0)
+        return LoopDefect{LoopDefect::Kind::nested_hole, h, g, p};
     }
   }
   return std::nullopt;

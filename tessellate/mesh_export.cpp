@@ -55,8 +55,8 @@ void write_ply(std::ostream& out, std::span<const MeshPart> parts) {
   for (const MeshPart& part : parts) {
     const TriangleBuffers& b = *part.buffers;
     for (std::size_t k = 0; k < b.positions.size(); ++k) {
-      for (float f : {b.positions[k].x, b.positions[k].y, b.positions[k].z, b.normals[k].x, b.normals[k].y, b.normals[k].z,
-                      b.uvs[k].x, b.uvs[k].y}) {
+      for (float f : {b.positions[k].x, b.positions[k].y, b.positions[k].z, b.normals[k].x, b.normals[k].y,
+                      b.normals[k].z, b.uvs[k].x, b.uvs[k].y}) {
         put(out, f);
       }
     }

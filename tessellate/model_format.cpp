@@ -52,9 +52,10 @@ class Parser {
     // Component ids index per-component arrays (rendering): they must be below the number of surfaces.
     for (std::size_t k = 0; k < model.surfaces.size(); ++k) {
       if (model.surfaces[k].component >= static_cast<int>(model.surfaces.size())) {
-        throw ModelError(file_, component_lines[k], "component " + std::to_string(model.surfaces[k].component) +
-                                                        " is out of range: a model of " + std::to_string(model.surfaces.size()) +
-                                                        " surfaces has components 0.." + std::to_string(model.surfaces.size() - 1));
+        throw ModelError(file_, component_lines[k],
+                         "component " + std::to_string(model.surfaces[k].component) + " is out of range: a model of " +
+                             std::to_string(model.surfaces.size()) + " surfaces has components 0.." +
+                             std::to_string(model.surfaces.size() - 1));
       }
     }
     return model;
@@ -172,12 +173,14 @@ class Parser {
         if (!(w > 0)) fail("weight " + words_[4] + " must be > 0");
         for (int c = 0; c < 3; ++c) {
           if (std::abs(p[c]) > kMaxCoordinate) {
-            fail(std::string("xyz").substr(static_cast<std::size_t>(c), 1) + " " + words_[1 + static_cast<std::size_t>(c)] +
+            fail(std::string("xyz").substr(static_cast<std::size_t>(c), 1) + " " +
+                 words_[1 + static_cast<std::size_t>(c)] +
                  " is out of range: |coordinate| <= " + format_limit(kMaxCoordinate) + " (step sizes square lengths)");
           }
         }
         if (w < kMinWeight || w > kMaxWeight) {
-          fail("weight " + words_[4] + " is out of range " + format_limit(kMinWeight) + ".." + format_limit(kMaxWeight));
+          fail("weight " + words_[4] + " is out of range " + format_limit(kMinWeight) + ".." +
+               format_limit(kMaxWeight));
         }
         const int i = points_read / (s.patch.degree_v + 1);
         const int j = points_read % (s.patch.degree_v + 1);
@@ -217,13 +220,15 @@ class Parser {
         std::vector<glm::dvec2> pts;
         for (int k = 0; k < n; ++k) {
           next_in("loop");
-          if (words_[0] != "pt") fail("expected 'pt <u> <v>' (" + std::to_string(k) + " of " + std::to_string(n) + " read)");
+          if (words_[0] != "pt")
+            fail("expected 'pt <u> <v>' (" + std::to_string(k) + " of " + std::to_string(n) + " read)");
           expect_fields(3, "pt <u> <v>");
           const glm::dvec2 q{number(1, "u"), number(2, "v")};
           if (q.x < 0 || q.x > 1 || q.y < 0 || q.y > 1) fail("trim point lies outside the domain [0,1]²");
           pts.push_back(q);
         }
-        if (!loop.segments.empty() && glm::length(loop.segments.back().control.back() - pts.front()) > kClosureTolerance) {
+        if (!loop.segments.empty() &&
+            glm::length(loop.segments.back().control.back() - pts.front()) > kClosureTolerance) {
           fail("segment does not start where the previous one ends");
         }
         if (curve) {
@@ -248,7 +253,8 @@ class Parser {
       polygons.push_back(sample_loop(s.loops[k]));
       const double area2 = signed_area2(polygons.back());
       if (std::abs(area2) < 1e-14) throw ModelError(file_, at, "loop encloses no area");
-      if (k == 0 && area2 < 0) throw ModelError(file_, at, "outer loop is clockwise (material must lie on its left: counter-clockwise)");
+      if (k == 0 && area2 < 0)
+        throw ModelError(file_, at, "outer loop is clockwise (material must lie on its left: counter-clockwise)");
       if (k > 0 && area2 > 0) throw ModelError(file_, at, "hole loop is counter-clockwise (holes run clockwise)");
     }
     if (const std::optional<LoopDefect> d = find_loop_defect(polygons)) {
@@ -287,8 +293,10 @@ Model parse_model(std::istream& in, const std::string& file_name) { return Parse
 Model load_model(const std::string& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
-  if (status.type() == std::filesystem::file_type::not_found) throw ModelError(path, 0, "cannot open the file: no such file");
-  if (status.type() == std::filesystem::file_type::directory) throw ModelError(path, 0, "cannot open the file: it is a directory");
+  if (status.type() == std::filesystem::file_type::not_found)
+    throw ModelError(path, 0, "cannot open the file: no such file");
+  if (status.type() == std::filesystem::file_type::directory)
+    throw ModelError(path, 0, "cannot open the file: it is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ModelError(path, 0, std::string("cannot open the file: ") + std::strerror(errno));
   return parse_model(in, path);
@@ -333,7 +341,8 @@ void write_model(std::ostream& out, const Model& model) {
         while (run < loop.segments.size() && loop.segments[run].degree() == 1) ++run;
         if (run > k) {
           out << "    polyline " << run - k + 1 << "\n";
-          for (std::size_t q = k; q < run; ++q) out << "    pt " << loop.segments[q].control[0].x << " " << loop.segments[q].control[0].y << "\n";
+          for (std::size_t q = k; q < run; ++q)
+            out << "    pt " << loop.segments[q].control[0].x << " " << loop.segments[q].control[0].y << "\n";
           out << "    pt " << loop.segments[run - 1].control[1].x << " " << loop.segments[run - 1].control[1].y << "\n";
           k = run;
           continue;

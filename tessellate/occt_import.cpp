@@ -67,7 +67,8 @@ std::string lowercase(std::string s) {
 // A surface name is one word in the native format: keep [A-Za-z0-9_.-], replace the rest.
 std::string sanitize(const std::string& s) {
   std::string out;
-  for (const char c : s) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') ? c : '_';
+  for (const char c : s)
+    out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') ? c : '_';
   return out.empty() ? std::string("cad") : out;
 }
 
@@ -140,7 +141,8 @@ TopoDS_Shape read_shape(const std::string& path) {
         throw std::runtime_error(path + ": not a readable STEP file" + quiet.first_failure());
       }
       reader.TransferRoots();
-      if (reader.NbShapes() == 0) throw std::runtime_error(path + ": the STEP file holds no shape Open CASCADE could transfer");
+      if (reader.NbShapes() == 0)
+        throw std::runtime_error(path + ": the STEP file holds no shape Open CASCADE could transfer");
       return reader.OneShape();
     }
     if (iges) {
@@ -149,7 +151,8 @@ TopoDS_Shape read_shape(const std::string& path) {
         throw std::runtime_error(path + ": not a readable IGES file" + quiet.first_failure());
       }
       reader.TransferRoots();
-      if (reader.NbShapes() == 0) throw std::runtime_error(path + ": the IGES file holds no shape Open CASCADE could transfer");
+      if (reader.NbShapes() == 0)
+        throw std::runtime_error(path + ": the IGES file holds no shape Open CASCADE could transfer");
       return reader.OneShape();
     }
     BRep_Builder builder;
@@ -181,7 +184,7 @@ TopoDS_Shape read_shape(const std::string& path) {
 
 // Parameters where a p-curve's polynomial pieces meet inside [first, last], plus the two ends; and how many
 // segments each piece gets (1 for a straight piece).
-void pcurve_breaks(const Handle(Geom2d_Curve)& curve, double first, double last, int samples_per_span,
+void pcurve_breaks(const Handle(Geom2d_Curve) & curve, double first, double last, int samples_per_span,
                    std::vector<double>& breaks, int& per_span) {
   Handle(Geom2d_Curve) basis = curve;
   while (const Handle(Geom2d_TrimmedCurve) t = Handle(Geom2d_TrimmedCurve)::DownCast(basis)) basis = t->BasisCurve();
@@ -220,8 +223,8 @@ struct FaceLoops {
 
 FaceLoops build_loops(const TopoDS_Face& face, int samples_per_span) {
   FaceLoops out;
-  std::vector<std::vector<glm::dvec2>> raw;      // each loop's points as sampled, edges concatenated
-  std::vector<std::vector<std::size_t>> joins;   // where each edge starts in `raw` (for the gap check)
+  std::vector<std::vector<glm::dvec2>> raw;     // each loop's points as sampled, edges concatenated
+  std::vector<std::vector<std::size_t>> joins;  // where each edge starts in `raw` (for the gap check)
   std::vector<double> breaks;
   for (TopExp_Explorer wires(face, TopAbs_WIRE); wires.More(); wires.Next()) {
     const TopoDS_Wire& wire = TopoDS::Wire(wires.Current());
@@ -287,7 +290,8 @@ FaceLoops build_loops(const TopoDS_Face& face, int samples_per_span) {
     while (poly.size() > 1 && glm::length(poly.back() - poly.front()) <= dup) poly.pop_back();
     out.loops.push_back(std::move(poly));
   }
-  if (out.max_gap > kMaxGapRelative * extent) out.problem = "face: a wire is not closed in (u, v) (a gap over 1% of the face's extent)";
+  if (out.max_gap > kMaxGapRelative * extent)
+    out.problem = "face: a wire is not closed in (u, v) (a gap over 1% of the face's extent)";
   return out;
 }
 
@@ -334,7 +338,9 @@ double snap_to_line(double x, const std::vector<double>& lines) {
 // crossing itself far away is left for the model format's checks to report.
 int cut_local_loops(Polygon2& poly) {
   constexpr std::size_t kWindow = 8;
-  const auto orient = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); };
+  const auto orient = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
+    return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  };
   int cuts = 0;
   for (bool again = true; again && poly.size() >= 6;) {
     again = false;
@@ -354,7 +360,8 @@ int cut_local_loops(Polygon2& poly) {
           out.push_back(x);
           out.insert(out.end(), poly.begin() + static_cast<std::ptrdiff_t>(i + d + 1), poly.end());
         } else {  // the dropped run wraps: keep j+1 .. i
-          out.assign(poly.begin() + static_cast<std::ptrdiff_t>(j + 1), poly.begin() + static_cast<std::ptrdiff_t>(i + 1));
+          out.assign(poly.begin() + static_cast<std::ptrdiff_t>(j + 1),
+                     poly.begin() + static_cast<std::ptrdiff_t>(i + 1));
           out.push_back(x);
         }
         poly = std::move(out);
@@ -368,7 +375,7 @@ int cut_local_loops(Polygon2& poly) {
 
 // ---- patches -------------------------------------------------------------------------------------------
 
-BezierPatch to_patch(const Handle(Geom_BezierSurface)& b) {
+BezierPatch to_patch(const Handle(Geom_BezierSurface) & b) {
   BezierPatch p(b->UDegree(), b->VDegree());
   for (int i = 0; i <= p.degree_u; ++i) {
     for (int j = 0; j <= p.degree_v; ++j) {
@@ -411,7 +418,8 @@ void remove_spikes(Polygon2& q) {
       }
     }
     // Across the wrap-around: the last point and the first two, the last two and the first.
-    while (kept.size() >= 3 && (spike(kept[kept.size() - 2], kept.back(), kept[0]) || spike(kept.back(), kept[0], kept[1]))) {
+    while (kept.size() >= 3 &&
+           (spike(kept[kept.size() - 2], kept.back(), kept[0]) || spike(kept.back(), kept[0], kept[1]))) {
       if (spike(kept[kept.size() - 2], kept.back(), kept[0])) {
         kept.pop_back();
       } else {
@@ -497,7 +505,8 @@ class FaceImporter {
       stage = "B-spline surface";
       Handle(Geom_Surface) surface = BRep_Tool::Surface(fwd);
       if (surface.IsNull()) return skip("face: it has no surface");
-      while (const Handle(Geom_RectangularTrimmedSurface) t = Handle(Geom_RectangularTrimmedSurface)::DownCast(surface)) {
+      while (const Handle(Geom_RectangularTrimmedSurface) t =
+                 Handle(Geom_RectangularTrimmedSurface)::DownCast(surface)) {
         surface = t->BasisSurface();
       }
       Handle(Geom_BSplineSurface) bspline = Handle(Geom_BSplineSurface)::DownCast(surface);
@@ -630,7 +639,8 @@ class FaceImporter {
       } else {
         covers = split_region(loops, u_lines, v_lines);
       }
-      if (covers.size() != static_cast<std::size_t>(nu * nv)) return skip("face: split_region returned a wrong number of cells");
+      if (covers.size() != static_cast<std::size_t>(nu * nv))
+        return skip("face: split_region returned a wrong number of cells");
 
       stage = "Bézier patches";
       for (int iu = 0; iu < nu; ++iu) {

@@ -50,11 +50,11 @@ struct ImportSkip {
 
 struct ImportReport {
   std::string file;
-  int faces = 0;           // distinct faces in the file's shape
-  int faces_imported = 0;  // faces that gave at least one Surface
-  int patches = 0;         // Bézier patches of the faces that were converted (every cell of their knot grids)
-  int surfaces = 0;        // Surfaces appended to the model
-  int trim_loops = 0;      // closed (u, v) loops built from the wires of converted faces
+  int faces = 0;             // distinct faces in the file's shape
+  int faces_imported = 0;    // faces that gave at least one Surface
+  int patches = 0;           // Bézier patches of the faces that were converted (every cell of their knot grids)
+  int surfaces = 0;          // Surfaces appended to the model
+  int trim_loops = 0;        // closed (u, v) loops built from the wires of converted faces
   int loops_reoriented = 0;  // loops found the wrong way round for their nesting and reversed
   int corner_loops_cut = 0;  // loops where p-curves overshooting each other at a corner made a tiny loop, cut off
   std::vector<ImportSkip> skipped;

@@ -36,7 +36,7 @@ struct PathScene {
   std::vector<Camera> cameras;           // per frame
   std::vector<Frustum> frusta;           // per frame
   TessellationSettings settings;
-  DenseRegion dense;                     // where dense-zoom ends (computed for every path)
+  DenseRegion dense;  // where dense-zoom ends (computed for every path)
 
   ItemId surfaces() const noexcept { return static_cast<ItemId>(prepared.size()); }
   int frames() const noexcept { return static_cast<int>(cameras.size()); }

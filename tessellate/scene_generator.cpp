@@ -49,13 +49,15 @@ void flip_u(Surface& s) {
 // the profile (degree of the segment), v around (rational quadratic). `outside` gives, for a point, a point the
 // normal must point away from; the patch is flipped when its centre normal does not.
 template <class Outside>
-void revolve(Model& m, const std::string& name, const std::vector<ProfileSegment>& profile, const Frame& f, int q0, int q1,
-             bool solid, int component_hint, Outside outside) {
+void revolve(Model& m, const std::string& name, const std::vector<ProfileSegment>& profile, const Frame& f, int q0,
+             int q1, bool solid, int component_hint, Outside outside) {
   for (std::size_t s = 0; s < profile.size(); ++s) {
     const ProfileSegment& seg = profile[s];
     for (int q = q0; q < q1; ++q) {
       const double a0 = q * 0.5 * std::numbers::pi, a1 = (q + 1) * 0.5 * std::numbers::pi;
-      const glm::dvec2 arc[3] = {{std::cos(a0), std::sin(a0)}, {std::cos(a0) + std::cos(a1), std::sin(a0) + std::sin(a1)}, {std::cos(a1), std::sin(a1)}};
+      const glm::dvec2 arc[3] = {{std::cos(a0), std::sin(a0)},
+                                 {std::cos(a0) + std::cos(a1), std::sin(a0) + std::sin(a1)},
+                                 {std::cos(a1), std::sin(a1)}};
       const double arc_w[3] = {1.0, kHalfRoot2, 1.0};
       Surface surf;
       surf.name = name + "_s" + std::to_string(s) + "q" + std::to_string(q);
@@ -63,7 +65,8 @@ void revolve(Model& m, const std::string& name, const std::vector<ProfileSegment
       surf.solid = solid;
       surf.component = component_hint;
       for (int i = 0; i < static_cast<int>(seg.size()); ++i) {
-        for (int j = 0; j < 3; ++j) surf.patch.set(i, j, f.at(seg[i].rho * arc[j].x, seg[i].rho * arc[j].y, seg[i].z), seg[i].w * arc_w[j]);
+        for (int j = 0; j < 3; ++j)
+          surf.patch.set(i, j, f.at(seg[i].rho * arc[j].x, seg[i].rho * arc[j].y, seg[i].z), seg[i].w * arc_w[j]);
       }
       const SurfacePoint c = evaluate(surf.patch, 0.5, 0.5);
       if (glm::dot(c.normal, c.position - outside(c.position)) < 0) flip_u(surf);
@@ -189,7 +192,8 @@ class PlantBuilder {
     const std::string tag = "bay" + std::to_string(gx) + "_" + std::to_string(gy);
     const glm::dvec3 o{gx * spacing, gy * spacing, 0};
     const double tr = uniform(1.2, 2.0), th = uniform(4.0, 7.0);
-    plate(tag + "_base", o + glm::dvec3(-0.3 * spacing, -0.3 * spacing, 0), 0.6 * spacing, 0.6 * spacing, integer(2, 4), integer(0, 1) == 1);
+    plate(tag + "_base", o + glm::dvec3(-0.3 * spacing, -0.3 * spacing, 0), 0.6 * spacing, 0.6 * spacing, integer(2, 4),
+          integer(0, 1) == 1);
     tank(tag + "_tank", o + glm::dvec3(0, 0, 0.05), tr, th);
     // Pipe run: out of the tank's side, an elbow up, a riser, a flange on top.
     const double pr = uniform(0.15, 0.3), bend = 2.5 * pr;
@@ -237,7 +241,8 @@ Model generate_plant(const SceneOptions& options) {
 }
 
 Model load_scene(const std::string& spec, const std::string& data_dir) {
-  if (spec == "teapot" || spec == "teacup" || spec == "teaspoon") return load_model(data_dir + "/models/" + spec + ".fsm");
+  if (spec == "teapot" || spec == "teacup" || spec == "teaspoon")
+    return load_model(data_dir + "/models/" + spec + ".fsm");
   if (spec.rfind("plant:", 0) == 0) {
     SceneOptions o;
     const std::string rest = spec.substr(6);
@@ -253,7 +258,8 @@ Model load_scene(const std::string& spec, const std::string& data_dir) {
         if (used != seed.size()) throw std::invalid_argument(seed);
       }
     } catch (const std::logic_error&) {
-      throw std::invalid_argument("scene '" + spec + "': expected plant:<surfaces>[:<seed>], e.g. plant:5302 or plant:15906:7");
+      throw std::invalid_argument("scene '" + spec +
+                                  "': expected plant:<surfaces>[:<seed>], e.g. plant:5302 or plant:15906:7");
     }
     if (o.surfaces < 1) throw std::invalid_argument("scene '" + spec + "': the surface count must be at least 1");
     return generate_plant(o);

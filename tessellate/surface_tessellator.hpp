@@ -69,7 +69,7 @@ struct TessellationSettings {
   int max_steps = 256;            // per direction and patch
   int max_trim_steps = 128;       // per trim segment
   bool frustum_culling = true;
-  bool back_face_culling = true;  // solids only
+  bool back_face_culling = true;                       // solids only
   PlantedDefect planted_defect = PlantedDefect::none;  // tests only
   bool single_precision = true;  // untrimmed grids in float where the error bound allows (grid_row_kernel.hpp)
 };
@@ -83,7 +83,7 @@ struct PreparedSurface {
   Box box;
   double radius = 0;  // of the control points around box.centre()
   NormalCone cone;
-  double float_error = 0;  // float_row_error_bound: the single-precision grid's position error bound
+  double float_error = 0;              // float_row_error_bound: the single-precision grid's position error bound
   std::vector<const TrimLoop*> loops;  // trim loops; empty when untrimmed or trimmed by the domain alone
   bool trimmed() const noexcept { return !loops.empty(); }
 };
@@ -158,20 +158,23 @@ inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, 
   const StepSizes d = deviation_steps(s.bounds, plan.epsilon, settings.max_steps + 1);
   plan.capped = d.n_u > settings.max_steps || d.n_v > settings.max_steps;
   const StepSizes z = size_steps(s.bounds, plan.edge_length, settings.max_steps);
-  plan.steps = {std::min(std::max(d.n_u, z.n_u), settings.max_steps), std::min(std::max(d.n_v, z.n_v), settings.max_steps)};
+  plan.steps = {std::min(std::max(d.n_u, z.n_u), settings.max_steps),
+                std::min(std::max(d.n_v, z.n_v), settings.max_steps)};
   plan.single_precision = settings.single_precision && s.float_error <= 0.1 * plan.epsilon;
   return plan;
 }
 
 // n_t for one trim segment (step 4 of the opening comment).
-inline int trim_segment_steps(const TrimSegment& seg, const NetBounds& b, double epsilon, double edge_length, int max_steps) {
+inline int trim_segment_steps(const TrimSegment& seg, const NetBounds& b, double epsilon, double edge_length,
+                              int max_steps) {
   const int d = seg.degree();
   if (d <= 1) return 1;
   double second = 0, du = 0, dv = 0;
   for (int k = 0; k + 1 <= d; ++k) {
     du = std::max(du, std::abs(seg.control[k + 1].x - seg.control[k].x));
     dv = std::max(dv, std::abs(seg.control[k + 1].y - seg.control[k].y));
-    if (k + 2 <= d) second = std::max(second, glm::length(seg.control[k + 2] - 2.0 * seg.control[k + 1] + seg.control[k]));
+    if (k + 2 <= d)
+      second = std::max(second, glm::length(seg.control[k + 2] - 2.0 * seg.control[k + 1] + seg.control[k]));
   }
   const double eps_domain = epsilon / std::max(b.len_u + b.len_v, 1e-300);
   const double wang = std::ceil(std::sqrt(d * (d - 1) * second / (8.0 * eps_domain)));
@@ -320,7 +323,9 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
     }
     return slot;
   };
-  const auto corner_id = [nv](int i, int j) { return GridTrimmer::kCornerBit | static_cast<std::uint32_t>(i * (nv + 1) + j); };
+  const auto corner_id = [nv](int i, int j) {
+    return GridTrimmer::kCornerBit | static_cast<std::uint32_t>(i * (nv + 1) + j);
+  };
   const auto position = [&trimmer](std::uint32_t id) { return trimmer.position(id); };
   const double cell_area = 1.0 / (static_cast<double>(nu) * nv);
   const double degenerate_area2 = 1e-12 * cell_area;
@@ -352,7 +357,7 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
             if (!scratch.holes.empty()) {
               join_holes(scratch.ring, scratch.holes,
                          settings.planted_defect == PlantedDefect::bridge_to_first_copy ? BridgeCopy::first_copy
-                                                                                         : BridgeCopy::sector);
+                                                                                        : BridgeCopy::sector);
             }
             scratch.ring_triangles.clear();
             clip_ears(scratch.ring, scratch.ring_triangles, scratch.next, scratch.prev);

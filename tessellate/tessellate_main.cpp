@@ -35,7 +35,8 @@ namespace fsys = std::filesystem;
 namespace report = frontsteal::report;
 
 constexpr const char* kProgram = "frontsteal-tessellate";
-constexpr const char* kDescription = R"(Tessellates a scene along the main job's camera path (orbit, then zoom) on one thread and audits every
+constexpr const char* kDescription =
+    R"(Tessellates a scene along the main job's camera path (orbit, then zoom) on one thread and audits every
 surface of every frame: trimmed pieces tiled exactly by their triangles (no overlap, no covered hole, no
 gap), each trimmed surface's (u, v) area equal to its trim loops', tracing complete; surfaces whose step
 count was held at the cap (their deviation may exceed the tolerance) are counted. Prints a per-frame table,
@@ -69,18 +70,22 @@ Options parse(int argc, char** argv) {
   cli.option("--max-steps", o.max_steps, "step cap per direction and patch")->check(CLI::Range(1, 4096));
   cli.option("--max-triangles", o.max_triangles,
              "triangle budget per frame: the predicted count is capped by coarsening the surfaces farthest from "
-             "the eye first (triangle_budget.hpp); 0: no budget")->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 40));
-  cli.option("--export", o.export_file, "also write frame --frame as FILE (.obj: text, 9 significant digits, exact "
-                                        "for the float buffers; .ply: binary floats)")
+             "the eye first (triangle_budget.hpp); 0: no budget")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 40));
+  cli.option("--export", o.export_file,
+             "also write frame --frame as FILE (.obj: text, 9 significant digits, exact "
+             "for the float buffers; .ply: binary floats)")
       ->check([](const std::string& f) {
         const std::string ext = fsys::path(f).extension().string();
         return ext == ".obj" || ext == ".ply" ? std::string() : "expects a .obj or .ply file, got '" + f + "'";
       });
   cli.option("--frame", o.export_frame, "the frame to export and to plot")->check(CLI::Range(0, 100000));
-  cli.option("--plot-surface", o.plot_surface, "also plot surface N's triangles in (u, v) at frame --frame (gnuplot "
+  cli.option("--plot-surface", o.plot_surface,
+             "also plot surface N's triangles in (u, v) at frame --frame (gnuplot "
              "PNG, filled at half opacity: a region covered twice shows darker, a covered hole shows)");
   std::string defect = "none";
-  cli.option("--plant-defect", defect, "negative control: tessellate with a planted defect (wave1-bridge | drop-ear) "
+  cli.option("--plant-defect", defect,
+             "negative control: tessellate with a planted defect (wave1-bridge | drop-ear) "
              "to see the audit fail (exit 1)")
       ->check(CLI::IsMember({"none", "wave1-bridge", "drop-ear"}));
   cli.out(o.out);
@@ -102,7 +107,8 @@ struct FrameAudit {
 };
 
 // The surface's triangles in (u, v) as filled half-transparent polygons: gnuplot data, script and PNG.
-void plot_uv_triangles(const Options& o, const report::ResultsDir& dir, const std::string& name, const ts::TriangleBuffers& b) {
+void plot_uv_triangles(const Options& o, const report::ResultsDir& dir, const std::string& name,
+                       const ts::TriangleBuffers& b) {
   const std::string stem = "uv-" + name;
   std::ostringstream dat;
   dat << std::setprecision(9);
@@ -156,13 +162,14 @@ std::vector<FrameAudit> audit_path(const Options& o, const ts::Model& model, con
     const auto t0 = std::chrono::steady_clock::now();
     // With a budget, the whole frame is planned first, so that the budget can see every surface's count.
     if (o.max_triangles > 0) {
-      for (std::size_t k = 0; k < prepared.size(); ++k) plans[k] = ts::plan_surface(prepared[k], cam, frustum, settings);
+      for (std::size_t k = 0; k < prepared.size(); ++k)
+        plans[k] = ts::plan_surface(prepared[k], cam, frustum, settings);
       a.budget = ts::apply_triangle_budget(prepared, plans, cam, settings, o.max_triangles);
     }
     for (std::size_t k = 0; k < prepared.size(); ++k) {
-      const ts::SurfaceResult r = o.max_triangles > 0
-                                      ? ts::tessellate_planned(prepared[k], plans[k], settings, scratch, buffers[k])
-                                      : ts::tessellate_surface(prepared[k], cam, frustum, settings, scratch, buffers[k]);
+      const ts::SurfaceResult r =
+          o.max_triangles > 0 ? ts::tessellate_planned(prepared[k], plans[k], settings, scratch, buffers[k])
+                              : ts::tessellate_surface(prepared[k], cam, frustum, settings, scratch, buffers[k]);
       if (r.culled != ts::Culled::no) continue;
       ++a.visible;
       a.trimmed += prepared[k].trimmed();
@@ -175,7 +182,8 @@ std::vector<FrameAudit> audit_path(const Options& o, const ts::Model& model, con
       if (r.inconsistencies() > 0 && a.inconsistent_surfaces++ == 0) a.first_inconsistent = model.surfaces[k].name;
     }
     a.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (f == o.export_frame && plotted < buffers.size()) plot_uv_triangles(o, dir, model.surfaces[plotted].name, buffers[plotted]);
+    if (f == o.export_frame && plotted < buffers.size())
+      plot_uv_triangles(o, dir, model.surfaces[plotted].name, buffers[plotted]);
     if (f == o.export_frame && !o.export_file.empty()) {
       std::vector<ts::MeshPart> parts;
       for (std::size_t k = 0; k < buffers.size(); ++k) parts.push_back({model.surfaces[k].name, &buffers[k]});
@@ -192,19 +200,34 @@ std::vector<FrameAudit> audit_path(const Options& o, const ts::Model& model, con
 }
 
 report::Table audit_table(const Options& o, const std::vector<FrameAudit>& frames) {
-  std::vector<report::Column> columns = {
-      {"frame", "frame"}, {"visible", "visible"}, {"trimmed", "trimmed"}, {"partial_cells", "partial cells"},
-      {"triangles", "triangles"}, {"trace_failures", "trace failures"}, {"tiling_violations", "tiling violations"},
-      {"area_mismatches", "area mismatches"}, {"failing_surfaces", "failing surfaces"}, {"capped", "capped"},
-      {"ms", "ms (1 thread, audit included)"}};
+  std::vector<report::Column> columns = {{"frame", "frame"},
+                                         {"visible", "visible"},
+                                         {"trimmed", "trimmed"},
+                                         {"partial_cells", "partial cells"},
+                                         {"triangles", "triangles"},
+                                         {"trace_failures", "trace failures"},
+                                         {"tiling_violations", "tiling violations"},
+                                         {"area_mismatches", "area mismatches"},
+                                         {"failing_surfaces", "failing surfaces"},
+                                         {"capped", "capped"},
+                                         {"ms", "ms (1 thread, audit included)"}};
   if (o.max_triangles > 0) {
-    columns.insert(columns.end(), {{"budget", "budget"}, {"predicted", "predicted"}, {"budget_met", "met"},
-                                   {"coarsened", "coarsened surfaces"}});
+    columns.insert(
+        columns.end(),
+        {{"budget", "budget"}, {"predicted", "predicted"}, {"budget_met", "met"}, {"coarsened", "coarsened surfaces"}});
   }
   report::Table table(columns);
   for (const FrameAudit& a : frames) {
-    std::vector<report::Cell> row = {a.frame, a.visible, a.trimmed, a.partial_cells, a.triangles, a.trace_failures,
-                                     a.tiling_violations, a.area_mismatches, a.inconsistent_surfaces, a.capped,
+    std::vector<report::Cell> row = {a.frame,
+                                     a.visible,
+                                     a.trimmed,
+                                     a.partial_cells,
+                                     a.triangles,
+                                     a.trace_failures,
+                                     a.tiling_violations,
+                                     a.area_mismatches,
+                                     a.inconsistent_surfaces,
+                                     a.capped,
                                      report::Cell::fixed(a.ms, 1)};
     if (o.max_triangles > 0) {
       row.insert(row.end(), {o.max_triangles, a.budget.predicted_after, a.budget.met, a.budget.coarsened});
@@ -221,20 +244,23 @@ std::uint64_t write_report(const Options& o, const ts::Model& model, const std::
   for (const FrameAudit& a : frames) failing += a.inconsistent_surfaces, capped += a.capped, checked += a.trimmed;
   const report::Table table = audit_table(o, frames);
   std::ostringstream summary;
-  summary << "Scene `" << o.scene << "` (" << model.surfaces.size() << " surfaces), " << o.frames << " frames along the "
+  summary << "Scene `" << o.scene << "` (" << model.surfaces.size() << " surfaces), " << o.frames
+          << " frames along the "
           << "camera path (orbit, then zoom), " << o.width << "x" << o.height << ", tolerance " << o.tolerance
           << " px, step cap " << o.max_steps << ". Machine: " << frontsteal::cpu_model() << " ("
           << std::thread::hardware_concurrency() << " hardware threads), 1-minute load average " << load_before
           << " before and " << frontsteal::load_average_1min() << " after the run (frame times are disturbed when it "
-          << "exceeds 1); commit " << FRONTSTEAL_GIT_COMMIT << ". Audit: " << checked << " trimmed surface-frames checked, "
-          << failing << " failing; surfaces held at the step cap: " << capped << " surface-frames.";
+          << "exceeds 1); commit " << FRONTSTEAL_GIT_COMMIT << ". Audit: " << checked
+          << " trimmed surface-frames checked, " << failing << " failing; surfaces held at the step cap: " << capped
+          << " surface-frames.";
   if (o.max_triangles > 0) {
     summary << " Triangle budget " << o.max_triangles << " per frame: the predicted count is capped by halving the "
             << "steps of the surfaces farthest from the eye first (triangle counts of trimmed surfaces are estimates).";
   }
   summary << "\n";
   std::cout << summary.str() << '\n' << table.terminal();
-  dir.write("tessellate-audit.md", "# Tessellation audit along the camera path (measured)\n\n" + summary.str() + '\n' + table.markdown());
+  dir.write("tessellate-audit.md",
+            "# Tessellation audit along the camera path (measured)\n\n" + summary.str() + '\n' + table.markdown());
   dir.write("tessellate-audit.csv", table.csv());
   report::Json doc = report::document(kProgram, 1, "measured", FRONTSTEAL_GIT_COMMIT);
   doc["scene"] = o.scene;

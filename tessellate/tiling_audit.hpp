@@ -27,9 +27,9 @@
 namespace frontsteal::tess {
 
 enum class TilingVerdict : std::uint8_t {
-  exact,               // the triangles tile the piece
-  inverted_triangle,   // a clockwise triangle of more than degenerate area: some point is covered −1 times
-  boundary_mismatch,   // the triangles' edges do not cancel to the piece's rings: overlap, gap or covered hole
+  exact,              // the triangles tile the piece
+  inverted_triangle,  // a clockwise triangle of more than degenerate area: some point is covered −1 times
+  boundary_mismatch,  // the triangles' edges do not cancel to the piece's rings: overlap, gap or covered hole
 };
 
 inline const char* to_string(TilingVerdict v) {

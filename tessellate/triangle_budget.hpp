@@ -71,7 +71,8 @@ inline std::uint64_t predict_triangles(const PreparedSurface& s, const SurfacePl
         const glm::dvec2 p = seg.control[k], q = seg.control[k + 1];
         area2 += p.x * q.y - q.x * p.y;
         // An edge along the domain's boundary runs on grid lines: its cells are full, it adds no vertices.
-        const bool on_boundary = (p.x == q.x && (p.x == 0.0 || p.x == 1.0)) || (p.y == q.y && (p.y == 0.0 || p.y == 1.0));
+        const bool on_boundary =
+            (p.x == q.x && (p.x == 0.0 || p.x == 1.0)) || (p.y == q.y && (p.y == 0.0 || p.y == 1.0));
         if (!on_boundary) crossings += std::abs(q.x - p.x) * nu + std::abs(q.y - p.y) * nv;
       }
     }
@@ -92,7 +93,8 @@ inline double distance_to_box(const Box& box, const glm::dvec3& eye) {
 inline void halve(SurfacePlan& plan) {
   const StepSizes old = plan.steps;
   plan.steps = {std::max(1, old.n_u / 2), std::max(1, old.n_v / 2)};
-  const double r = std::max(static_cast<double>(old.n_u) / plan.steps.n_u, static_cast<double>(old.n_v) / plan.steps.n_v);
+  const double r =
+      std::max(static_cast<double>(old.n_u) / plan.steps.n_u, static_cast<double>(old.n_v) / plan.steps.n_v);
   plan.epsilon *= r * r;
   plan.edge_length *= r;
 }

@@ -148,7 +148,8 @@ class GridTrimmer {
             continue;
           }
           home->holes.emplace_back();
-          for (std::uint32_t p = ch.first; p < ch.first + ch.count; ++p) push_vertex(home->holes.back(), chain_points_[p]);
+          for (std::uint32_t p = ch.first; p < ch.first + ch.count; ++p)
+            push_vertex(home->holes.back(), chain_points_[p]);
         }
       }
     }
@@ -158,13 +159,13 @@ class GridTrimmer {
  private:
   struct Chain {
     int cell;
-    double s_in;   // perimeter position of the entry; −1 for a closed chain
-    double s_out;  // perimeter position of the exit
+    double s_in;                 // perimeter position of the entry; −1 for a closed chain
+    double s_out;                // perimeter position of the exit
     std::uint32_t first, count;  // into chain_points_
   };
   struct Event {
     std::uint32_t point;
-    int cell_after;   // −1 for an ordinary vertex; the new cell for a crossing
+    int cell_after;  // −1 for an ordinary vertex; the new cell for a crossing
     double s_out, s_in;
   };
 
@@ -192,7 +193,8 @@ class GridTrimmer {
     const double u0 = u_.front(), u1 = u_.back(), v0 = v_.front(), v1 = v_.back();
     const double tol = 1e-9 * std::max(u1 - u0, v1 - v0);
     for (const glm::dvec2& p : loop) {
-      const bool on = std::abs(p.x - u0) <= tol || std::abs(p.x - u1) <= tol || std::abs(p.y - v0) <= tol || std::abs(p.y - v1) <= tol;
+      const bool on = std::abs(p.x - u0) <= tol || std::abs(p.x - u1) <= tol || std::abs(p.y - v0) <= tol ||
+                      std::abs(p.y - v1) <= tol;
       if (!on) return false;
     }
     double area2 = 0;
@@ -233,7 +235,8 @@ class GridTrimmer {
       walk_segment(p, q, iu, iv);
     }
     // No crossing: one closed chain.
-    const auto first_crossing = std::find_if(events_.begin(), events_.end(), [](const Event& e) { return e.cell_after >= 0; });
+    const auto first_crossing =
+        std::find_if(events_.begin(), events_.end(), [](const Event& e) { return e.cell_after >= 0; });
     if (first_crossing == events_.end()) {
       const std::uint32_t first = static_cast<std::uint32_t>(chain_points_.size());
       for (const Event& e : events_) chain_points_.push_back(e.point);
@@ -243,7 +246,8 @@ class GridTrimmer {
     // Rotate to begin at the first crossing; every crossing ends one chain and starts the next.
     const std::size_t r = static_cast<std::size_t>(first_crossing - events_.begin());
     const std::size_t m = events_.size();
-    Chain current{first_crossing->cell_after, first_crossing->s_in, 0, static_cast<std::uint32_t>(chain_points_.size()), 0};
+    Chain current{first_crossing->cell_after, first_crossing->s_in, 0, static_cast<std::uint32_t>(chain_points_.size()),
+                  0};
     chain_points_.push_back(first_crossing->point);
     for (std::size_t step = 1; step <= m; ++step) {
       const Event& e = events_[(r + step) % m];
@@ -343,7 +347,8 @@ class GridTrimmer {
     for (std::size_t k = 1; k < cell_chain_begin_.size(); ++k) cell_chain_begin_[k] += cell_chain_begin_[k - 1];
     chain_order_.resize(chains_.size());
     fill_.assign(cell_chain_begin_.begin(), cell_chain_begin_.end() - 1);
-    for (std::uint32_t c = 0; c < chains_.size(); ++c) chain_order_[fill_[static_cast<std::size_t>(chains_[c].cell)]++] = c;
+    for (std::uint32_t c = 0; c < chains_.size(); ++c)
+      chain_order_[fill_[static_cast<std::size_t>(chains_[c].cell)]++] = c;
   }
 
   TracedPiece& new_piece() {

@@ -43,14 +43,16 @@ struct Options {
 // defaults shown in --help, a mistake exits 2 naming the flag.
 Options parse(int argc, char** argv) {
   Options o;
-  frontsteal::report::CommandLine cli(kProgram, "Mandelbrot rows as frontsteal items: stealing/Fenced against queue-mutex.",
+  frontsteal::report::CommandLine cli(kProgram,
+                                      "Mandelbrot rows as frontsteal items: stealing/Fenced against queue-mutex.",
                                       "Exit status: 0 when every check held, 1 when one failed, 2 on a usage error.");
   cli.option("--threads", o.threads, "workers")->type_name("P")->check(CLI::Range(1u, 256u));
   cli.option("--rows", o.rows, "items = image rows")->type_name("N")->check(CLI::Range(1u, 1u << 20));
   cli.option("--width", o.width, "points per row")->type_name("W")->check(CLI::Range(1u, 1u << 16));
   cli.option("--max-iter", o.max_iter, "iteration bound per point")->type_name("K")->check(CLI::Range(1u, 1u << 20));
   cli.option("--frames", o.frames, "measured frames per scheduler, after one warm-up frame")
-      ->type_name("F")->check(CLI::Range(3u, 100000u));
+      ->type_name("F")
+      ->check(CLI::Range(3u, 100000u));
   cli.option("--out", o.out, "also write every frame as CSV (scheduler,frame,wall_ns,steals)")->type_name("FILE");
   cli.parse(argc, argv);
   return o;

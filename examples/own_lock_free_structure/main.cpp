@@ -93,9 +93,10 @@ int main(int argc, char** argv) {
   if (argc > 1) {
     const std::string a = argv[1];
     if (a == "--help" || a == "-h") {
-      std::printf("usage: own_lock_free_structure\n"
-                  "  Model-checks an SPSC ring with frontsteal's Relacy backend (full search), and two copies with a\n"
-                  "  planted relaxed order that must be caught. Exit 0: sound passes and both planted are caught.\n");
+      std::printf(
+          "usage: own_lock_free_structure\n"
+          "  Model-checks an SPSC ring with frontsteal's Relacy backend (full search), and two copies with a\n"
+          "  planted relaxed order that must be caught. Exit 0: sound passes and both planted are caught.\n");
       return 0;
     }
     std::fprintf(stderr, "own_lock_free_structure: unknown flag %s\n(run own_lock_free_structure --help)\n", a.c_str());

@@ -49,8 +49,8 @@ class SpscRing {
     const std::uint32_t t = Backend::load(tail_, kOwn, kSite, Where::current());
     const std::uint32_t h = Backend::load(head_, Orders::kReadHead, kSite, Where::current());  // R4
     if (t - h == Capacity) return false;
-    Backend::write(slots_[t % Capacity], v, Where::current());                              // W
-    Backend::store(tail_, t + 1, Orders::kPublishTail, kSite, Where::current());            // R1
+    Backend::write(slots_[t % Capacity], v, Where::current());                    // W
+    Backend::store(tail_, t + 1, Orders::kPublishTail, kSite, Where::current());  // R1
     return true;
   }
   // Consumer only. False when empty.
@@ -59,7 +59,7 @@ class SpscRing {
     const std::uint32_t t = Backend::load(tail_, Orders::kReadTail, kSite, Where::current());  // R2
     if (h == t) return false;
     out = Backend::read(slots_[h % Capacity], Where::current());
-    Backend::store(head_, h + 1, Orders::kReleaseHead, kSite, Where::current());            // R3
+    Backend::store(head_, h + 1, Orders::kReleaseHead, kSite, Where::current());  // R3
     return true;
   }
 

@@ -17,9 +17,7 @@ namespace frontsteal::simulation {
 struct AuditFailure {
   ItemId item = 0;
   std::uint32_t runs = 0;  // how often it ran: 0 lost, 2 or more duplicated
-  std::string what() const {
-    return "item " + std::to_string(item) + " executed " + std::to_string(runs) + " times";
-  }
+  std::string what() const { return "item " + std::to_string(item) + " executed " + std::to_string(runs) + " times"; }
 };
 
 class ExactlyOnceAudit {

@@ -12,7 +12,8 @@ namespace {
 
 namespace report = frontsteal::report;
 
-constexpr const char* kDescription = R"(The tessellation workload under LLVM libomp's static_steal, for the main job (frontsteal), which starts it
+constexpr const char* kDescription =
+    R"(The tessellation workload under LLVM libomp's static_steal, for the main job (frontsteal), which starts it
 as a child process and talks to it over stdin/stdout (protocol in schedulers/llvm_openmp/static_steal_child.cpp).
 Commands on stdin: "path" (run the camera path once, report every frame), "frames A B" (frames A .. B-1 only), "quit".)";
 
@@ -44,21 +45,27 @@ Options parse_options(int argc, char** argv) {
   cli.option("--path", path, "camera path")
       ->type_name("NAME")
       ->check(CLI::IsMember({"orbit-then-zoom", "orbit", "zoom", "walkthrough", "dense-zoom"}));
-  cli.option("--tolerance", o.tolerance, "screen-space tolerance in pixels")->type_name("PX")->check(CLI::Range(0.01, 1000.0));
+  cli.option("--tolerance", o.tolerance, "screen-space tolerance in pixels")
+      ->type_name("PX")
+      ->check(CLI::Range(0.01, 1000.0));
   std::string size = "1280x720";
   cli.option("--size", size, "image size")->type_name("WxH")->check(report::size_validator());
   cli.option("--grain", o.grain, "items per chunk")->type_name("G")->check(CLI::Range(1, 1 << 30));
   std::string defect;
   cli.option("--plant-defect", defect, "frontsteal's tessellation negative control")
-      ->type_name("D")->check(CLI::IsMember({"wave1-bridge", "drop-ear"}));
+      ->type_name("D")
+      ->check(CLI::IsMember({"wave1-bridge", "drop-ear"}));
   cli.flag("--pin", o.pin, "pin thread t to the t-th allowed CPU");
   cli.option("--schedule", o.schedule,
              "static-steal, or the probe's negative controls monotonic-dynamic and static, which must make it fail")
-      ->type_name("S")->check(CLI::IsMember({"static-steal", "monotonic-dynamic", "static"}));
+      ->type_name("S")
+      ->check(CLI::IsMember({"static-steal", "monotonic-dynamic", "static"}));
   std::string fault;
-  cli.option("--fault", fault, "drop:K | dup:K: skip item K, or run it twice, in every frame (the audit's negative "
-                               "control)")
-      ->type_name("F")->check(CLI::Validator(
+  cli.option("--fault", fault,
+             "drop:K | dup:K: skip item K, or run it twice, in every frame (the audit's negative "
+             "control)")
+      ->type_name("F")
+      ->check(CLI::Validator(
           [](std::string& v) {
             Options::Fault kind;
             int item = 0;

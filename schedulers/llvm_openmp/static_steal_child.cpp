@@ -96,7 +96,8 @@ void settle() {
   omp_pause_resource_all(omp_pause_soft);
   const std::int64_t cpu0 = process_cpu_ns();
   std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  if (process_cpu_ns() - cpu0 > 5'000'000) std::this_thread::sleep_for(std::chrono::milliseconds(kmp_get_blocktime() + 20));
+  if (process_cpu_ns() - cpu0 > 5'000'000)
+    std::this_thread::sleep_for(std::chrono::milliseconds(kmp_get_blocktime() + 20));
 }
 
 }  // namespace
@@ -114,7 +115,8 @@ int main(int argc, char** argv) {
   const int attempts = lo::probe_static_steal(o.workers);
   if (attempts == 0) {
     std::cout << "error static_steal not in effect: the probe did not see every thread start at its static range "
-                 "and then steal (schedule requested: " << o.schedule << ")" << std::endl;
+                 "and then steal (schedule requested: "
+              << o.schedule << ")" << std::endl;
     return 1;
   }
   if (frames->chunks() > std::numeric_limits<int>::max()) {

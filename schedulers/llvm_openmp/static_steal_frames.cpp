@@ -23,8 +23,13 @@ std::int64_t ns_since(Clock::time_point t) {
 }  // namespace
 
 StaticStealFrames::StaticStealFrames(const Options& o) : o_(o) {
-  ts::PathSceneOptions so{.scene = o.scene, .data_dir = FRONTSTEAL_DATA_DIR, .path = o.path, .frames = o.frames,
-                          .width = o.width, .height = o.height, .settings = {}};
+  ts::PathSceneOptions so{.scene = o.scene,
+                          .data_dir = FRONTSTEAL_DATA_DIR,
+                          .path = o.path,
+                          .frames = o.frames,
+                          .width = o.width,
+                          .height = o.height,
+                          .settings = {}};
   so.settings.pixel_tolerance = o.tolerance;
   so.settings.planted_defect = o.defect;
   try {

@@ -63,7 +63,8 @@ int probe_static_steal(int threads) {
     }
     if (absent) continue;
     bool ranges = true;
-    for (int t = 0; t < threads; ++t) ranges = ranges && first[static_cast<std::size_t>(t)] == range_start(t, m, threads);
+    for (int t = 0; t < threads; ++t)
+      ranges = ranges && first[static_cast<std::size_t>(t)] == range_start(t, m, threads);
     return ranges && stolen && !no_steal ? attempt : 0;
   }
   return 0;

@@ -28,7 +28,8 @@ std::string fixed(double v, int digits) { return report::fixed_text(v, digits); 
 
 std::string ShownComparison::verdict_text() const {
   std::string v = measure::to_string(c.decision);
-  if (c.chosen().valid) v += " " + std::string(c.chosen().effect_pct() >= 0 ? "+" : "") + fixed(c.chosen().effect_pct(), 1) + " %";
+  if (c.chosen().valid)
+    v += " " + std::string(c.chosen().effect_pct() >= 0 ? "+" : "") + fixed(c.chosen().effect_pct(), 1) + " %";
   return reliable ? v : "unreliable (" + v + ")";
 }
 
@@ -42,8 +43,13 @@ namespace {
 
 report::Json interval_json(const measure::LogInterval& li) {
   if (!li.valid) return nullptr;
-  return {{"ratio", li.ratio()}, {"ci95_low", li.ratio_low()}, {"ci95_high", li.ratio_high()},
-          {"log_ratio", li.estimate}, {"sd_per_round", li.sd}, {"se", li.se}, {"df", li.df}};
+  return {{"ratio", li.ratio()},
+          {"ci95_low", li.ratio_low()},
+          {"ci95_high", li.ratio_high()},
+          {"log_ratio", li.estimate},
+          {"sd_per_round", li.sd},
+          {"se", li.se},
+          {"df", li.df}};
 }
 
 double finite_or(double v, double otherwise) { return std::isfinite(v) ? v : otherwise; }
@@ -70,28 +76,43 @@ std::string instances_text(const Options& o) {
 report::Json ShownComparison::json() const {
   const measure::LogInterval& li = c.chosen();
   auto number = [&](double v) { return li.valid ? report::Json(v) : report::Json(nullptr); };  // no interval: null
-  return {{"ratio", number(li.ratio())}, {"ci95_low", number(li.ratio_low())}, {"ci95_high", number(li.ratio_high())},
-          {"pairs", c.rounds}, {"rounds", c.rounds}, {"blocks", c.blocks}, {"clusters", c.clusters},
-          {"effect_pct", number(li.effect_pct())}, {"verdict", reliable ? measure::to_string(c.decision) : "unreliable"},
-          {"verdict_if_reliable", measure::to_string(c.decision)}, {"reliable", reliable},
-          {"unreliable_reason", noise_reason}, {"margin_pct", 100 * c.margin}, {"differs", c.differs},
-          {"interval", c.uses_adjusted ? "probe-adjusted t" : "raw t"}, {"raw", interval_json(c.raw)},
-          {"adjusted", interval_json(c.adjusted)}, {"probe_slope", c.probe_slope},
-          {"variance_removed", c.variance_removed},
-          {"rounds_needed", c.decision == measure::Decision::kInconclusive ? report::Json(finite_or(c.rounds_needed, -1))
-                                                                            : report::Json(nullptr)},
-          {"mde80_pct", number(c.mde_pct)}};
+  return {
+      {"ratio", number(li.ratio())},
+      {"ci95_low", number(li.ratio_low())},
+      {"ci95_high", number(li.ratio_high())},
+      {"pairs", c.rounds},
+      {"rounds", c.rounds},
+      {"blocks", c.blocks},
+      {"clusters", c.clusters},
+      {"effect_pct", number(li.effect_pct())},
+      {"verdict", reliable ? measure::to_string(c.decision) : "unreliable"},
+      {"verdict_if_reliable", measure::to_string(c.decision)},
+      {"reliable", reliable},
+      {"unreliable_reason", noise_reason},
+      {"margin_pct", 100 * c.margin},
+      {"differs", c.differs},
+      {"interval", c.uses_adjusted ? "probe-adjusted t" : "raw t"},
+      {"raw", interval_json(c.raw)},
+      {"adjusted", interval_json(c.adjusted)},
+      {"probe_slope", c.probe_slope},
+      {"variance_removed", c.variance_removed},
+      {"rounds_needed", c.decision == measure::Decision::kInconclusive ? report::Json(finite_or(c.rounds_needed, -1))
+                                                                       : report::Json(nullptr)},
+      {"mde80_pct", number(c.mde_pct)}};
 }
 
 bool CalibrationRow::found() const {
   const measure::LogInterval& li = result.c.chosen();
   return li.valid && (nominal > 0 ? li.low > 0 : nominal < 0 ? li.high < 0 : false);
 }
-bool CalibrationRow::covered() const { return result.c.chosen().valid && result.c.chosen().contains(std::log1p(realized)); }
+bool CalibrationRow::covered() const {
+  return result.c.chosen().valid && result.c.chosen().contains(std::log1p(realized));
+}
 bool CalibrationRow::right() const {
   const measure::Decision d = result.c.decision;
-  return nominal > 0 ? d == measure::Decision::kSlower
-                     : nominal < 0 ? d == measure::Decision::kFaster : d == measure::Decision::kEquivalent;
+  return nominal > 0   ? d == measure::Decision::kSlower
+         : nominal < 0 ? d == measure::Decision::kFaster
+                       : d == measure::Decision::kEquivalent;
 }
 
 std::vector<double> frame_medians(const std::vector<std::vector<double>>& per_repeat, int frames) {
@@ -119,8 +140,10 @@ void judge_rows(const Measured& m, Analysis& a) {
   nz::Usage serial_total;
   for (const nz::Usage& u : m.serial_usage) serial_total += u;
   a.serial_spread = nz::spread_of(m.serial_path_ms);
-  if (const auto x = nz::assess(a.before_usage, o.noise); x.busy) a.notes.push_back("before the measurement: " + x.reason);
-  if (const auto x = nz::assess(a.after_usage, o.noise); x.busy) a.notes.push_back("after the measurement: " + x.reason);
+  if (const auto x = nz::assess(a.before_usage, o.noise); x.busy)
+    a.notes.push_back("before the measurement: " + x.reason);
+  if (const auto x = nz::assess(a.after_usage, o.noise); x.busy)
+    a.notes.push_back("after the measurement: " + x.reason);
   a.spread_diagnosis = nz::diagnose_spread(m.serial_path_ms, m.serial_probe, o.noise.spread, m.serial_pass_usage);
   if (o.interference) {
     nz::Usage cells_usage;
@@ -129,8 +152,10 @@ void judge_rows(const Measured& m, Analysis& a) {
     const double share =
         cells_usage.wall_s > 0 ? static_cast<double>(cells_usage.known_ticks) / (cells_usage.wall_s * ticks_per_s) : 0;
     if (share < 0.5 * o.interference->duty) {
-      a.noise_warnings.push_back("the interference co-runner used " + fixed(100 * share, 1) + " % of a core while the "
-                                 "schedulers ran, less than half of the " + fixed(100 * o.interference->duty, 0) +
+      a.noise_warnings.push_back("the interference co-runner used " + fixed(100 * share, 1) +
+                                 " % of a core while the "
+                                 "schedulers ran, less than half of the " +
+                                 fixed(100 * o.interference->duty, 0) +
                                  " % asked: the interference was not what the run says");
     }
   }
@@ -170,8 +195,8 @@ void judge_rows(const Measured& m, Analysis& a) {
     row.imbalance_mean = c.frames_run ? c.imbalance_sum / c.frames_run : 0;
     if (c.available > 0) {
       row.cpu_pct = 100.0 * static_cast<double>(c.totals.cpu_ns) / c.available;
-      row.off_cpu_pct = 100.0 * static_cast<double>(std::max<std::int64_t>(0, c.totals.active_ns - c.totals.cpu_ns)) /
-                        c.available;
+      row.off_cpu_pct =
+          100.0 * static_cast<double>(std::max<std::int64_t>(0, c.totals.active_ns - c.totals.cpu_ns)) / c.available;
     }
     row.spread_pct = 100.0 * nz::spread_of(c.path_ms);
     nz::Usage with_serial = c.usage;
@@ -206,13 +231,23 @@ void judge_rows(const Measured& m, Analysis& a) {
     const double realized = n ? std::expm1(log_sum / static_cast<double>(n)) : 0.0;
     nz::Usage usage = c.usage;
     usage += base->usage;
-    CalibrationRow row{c.label, c.workers, c.planted, c.role == ArmRole::kTwin ? 0.0 : realized,
-                       judge(c, base->rounds, usage, base->failed()), &c.rounds, &base->rounds};
+    CalibrationRow row{c.label,
+                       c.workers,
+                       c.planted,
+                       c.role == ArmRole::kTwin ? 0.0 : realized,
+                       judge(c, base->rounds, usage, base->failed()),
+                       &c.rounds,
+                       &base->rounds};
     a.calibration.push_back(row);
     if (c.failed()) a.problems = true;
     if (std::fabs(c.planted - 0.05) < 1e-9) {
-      CalibrationRow speedup{base->scheduler + " against " + c.label + " (planted speed-up)", c.workers, -0.05,
-                             1.0 / (1.0 + realized) - 1.0, ShownComparison{}, &base->rounds, &c.rounds};
+      CalibrationRow speedup{base->scheduler + " against " + c.label + " (planted speed-up)",
+                             c.workers,
+                             -0.05,
+                             1.0 / (1.0 + realized) - 1.0,
+                             ShownComparison{},
+                             &base->rounds,
+                             &c.rounds};
       speedup.result.c = measure::analyze_pairs(measure::pair_rounds(base->rounds, c.rounds), settings);
       speedup.result.reliable = row.result.reliable;
       speedup.result.noise_reason = row.result.noise_reason;
@@ -225,8 +260,8 @@ void judge_rows(const Measured& m, Analysis& a) {
 std::string answer_clause(const ShownComparison& s, const std::string& other, double margin) {
   const measure::LogInterval& li = s.c.chosen();
   const std::string numbers = "time " + std::string(li.effect_pct() >= 0 ? "+" : "") + fixed(li.effect_pct(), 1) +
-                              " % [" + fixed(100 * (li.ratio_low() - 1), 1) + ", " + fixed(100 * (li.ratio_high() - 1), 1) +
-                              "]";
+                              " % [" + fixed(100 * (li.ratio_low() - 1), 1) + ", " +
+                              fixed(100 * (li.ratio_high() - 1), 1) + "]";
   std::string clause;
   switch (s.c.decision) {
     case measure::Decision::kFaster: clause = "FASTER than " + other + " (" + numbers + ")"; break;
@@ -235,11 +270,11 @@ std::string answer_clause(const ShownComparison& s, const std::string& other, do
       clause = "EQUIVALENT to " + other + " within +-" + fixed(100 * margin, 1) + " % (" + numbers + ")";
       break;
     case measure::Decision::kInconclusive:
-      clause = "not decided against " + other + " (" + numbers +
-               (std::isfinite(s.c.rounds_needed)
-                    ? "; about " + std::to_string(static_cast<long>(s.c.rounds_needed)) + " rounds would decide, " +
-                          std::to_string(s.c.rounds) + " were run)"
-                    : "; the estimate sits on the margin: no number of rounds decides it)");
+      clause =
+          "not decided against " + other + " (" + numbers +
+          (std::isfinite(s.c.rounds_needed) ? "; about " + std::to_string(static_cast<long>(s.c.rounds_needed)) +
+                                                  " rounds would decide, " + std::to_string(s.c.rounds) + " were run)"
+                                            : "; the estimate sits on the margin: no number of rounds decides it)");
       break;
     case measure::Decision::kTooFewRounds: clause = "not compared with " + other + " (too few rounds)"; break;
   }
@@ -270,14 +305,16 @@ void short_answer(const Measured& m, Analysis& a) {
   for (WorkerId p : ps) {
     const Row* best = nullptr;
     for (const Row& r : a.rows) {
-      if (r.cell->workers != p || r.cell->scheduler.rfind("stealing/", 0) == 0 || !r.vs_serial.c.chosen().valid) continue;
+      if (r.cell->workers != p || r.cell->scheduler.rfind("stealing/", 0) == 0 || !r.vs_serial.c.chosen().valid)
+        continue;
       if (!best || r.vs_serial.c.chosen().estimate < best->vs_serial.c.chosen().estimate) best = &r;
     }
     for (const Row& r : a.rows) {
       if (r.cell->workers != p || r.cell->scheduler.rfind("stealing/", 0) != 0) continue;
-      std::string sentence = "P = " + std::to_string(p) + (p > m.cores ? " (oversubscribed)" : "") + ": " +
-                             r.cell->scheduler + " is ";
-      sentence += r.vs_queue ? answer_clause(*r.vs_queue, "queue-mutex", o.margin) : "not compared with queue-mutex (not run)";
+      std::string sentence =
+          "P = " + std::to_string(p) + (p > m.cores ? " (oversubscribed)" : "") + ": " + r.cell->scheduler + " is ";
+      sentence +=
+          r.vs_queue ? answer_clause(*r.vs_queue, "queue-mutex", o.margin) : "not compared with queue-mutex (not run)";
       if (best && best->cell->scheduler != "queue-mutex") {
         ShownComparison vs_best;
         vs_best.c = measure::analyze_pairs(measure::pair_rounds(r.cell->rounds, best->cell->rounds), settings);
@@ -292,18 +329,22 @@ void short_answer(const Measured& m, Analysis& a) {
   }
   const std::size_t rounds = m.serial_rounds.size();
   const std::size_t per_comparison = rows_rounds(a);
-  a.design_line = std::to_string(per_comparison) + " rounds per comparison (" + std::to_string(o.repeats) +
-                  " passes x segments of " + std::to_string(o.round_frames) + " frames; " + std::to_string(rounds) +
-                  " rounds in all, each the serial loop and every arm of one P once, in " + measure::to_string(o.order) +
-                  " order; " + instances_text(o) + "); verdicts on the per-round log-ratio (" +
-                  measure::to_string(o.estimator) + ", segments as blocks), Student-t 95 % interval" +
-                  (o.adjust ? " adjusted for the CPU speed probe (regression on the probe before each arm; it removed a "
-                              "median " + fixed(a.median_variance_removed_pct, 0) + " % of the variance, raw intervals in "
-                              "the JSON)"
-                            : " (raw)") +
-                  ", margin +-" + fixed(100 * o.margin, 1) + " %; this run finds a change of " +
-                  fixed(a.median_mde_pct, 1) + " % with 80 % power (median over the comparisons with queue-mutex at "
-                  "P <= " + std::to_string(m.cores) + ")";
+  a.design_line =
+      std::to_string(per_comparison) + " rounds per comparison (" + std::to_string(o.repeats) +
+      " passes x segments of " + std::to_string(o.round_frames) + " frames; " + std::to_string(rounds) +
+      " rounds in all, each the serial loop and every arm of one P once, in " + measure::to_string(o.order) +
+      " order; " + instances_text(o) + "); verdicts on the per-round log-ratio (" + measure::to_string(o.estimator) +
+      ", segments as blocks), Student-t 95 % interval" +
+      (o.adjust ? " adjusted for the CPU speed probe (regression on the probe before each arm; it removed a "
+                  "median " +
+                      fixed(a.median_variance_removed_pct, 0) +
+                      " % of the variance, raw intervals in "
+                      "the JSON)"
+                : " (raw)") +
+      ", margin +-" + fixed(100 * o.margin, 1) + " %; this run finds a change of " + fixed(a.median_mde_pct, 1) +
+      " % with 80 % power (median over the comparisons with queue-mutex at "
+      "P <= " +
+      std::to_string(m.cores) + ")";
 }
 
 // The camera path, and how much a few surfaces dominate: the 16 costliest surfaces' share of a frame's
@@ -374,8 +415,7 @@ void summary_lines(const Measured& m, Analysis& a) {
   for (const Row& r : a.rows) cell_spreads.push_back(r.spread_pct);
   std::ostringstream spread;
   spread << "spread of single passes (max/min - 1, context only: the verdicts rest on the paired rounds): serial loop "
-         << fixed(100 * a.serial_spread, 1)
-         << " %; schedulers: median " << fixed(median(cell_spreads), 1) << " %, max "
+         << fixed(100 * a.serial_spread, 1) << " %; schedulers: median " << fixed(median(cell_spreads), 1) << " %, max "
          << fixed(cell_spreads.empty() ? 0.0 : *std::max_element(cell_spreads.begin(), cell_spreads.end()), 1)
          << " % (workers pinned: " << (o.pin ? "yes, --pin" : "no") << "); " << a.spread_diagnosis.line;
   a.spread_line = spread.str();
@@ -428,15 +468,15 @@ void summary_lines(const Measured& m, Analysis& a) {
   audit << "tessellation audit (every surface of every frame, every run: trimmed pieces tiled exactly, "
            "(u, v) area = trim-loop area): "
         << a.serial_inconsistencies << " inconsistencies in the serial loop; surfaces held at the "
-        << m.wl.settings.max_steps << "-step cap (deviation may exceed " << o.tolerance << " px there): "
-        << a.capped_total << " surface-frames, at most " << a.capped_max << " per frame";
+        << m.wl.settings.max_steps << "-step cap (deviation may exceed " << o.tolerance
+        << " px there): " << a.capped_total << " surface-frames, at most " << a.capped_max << " per frame";
   a.tessellation_audit = audit.str();
   std::ostringstream child;  // how openmp-static-steal ran, and the proof that static_steal was in effect
   for (const Cell& c : m.cells) {
     if (c.child) {
-      child << sc::kLlvmOpenMpName << " P=" << c.workers << ": child process " << shown_path(sc::llvm_openmp_child_path())
-            << " (clang++-14, libomp; per-item code compiled by clang), " << c.child->ready_line()
-            << "; steals = chunks run off their static owner\n";
+      child << sc::kLlvmOpenMpName << " P=" << c.workers << ": child process "
+            << shown_path(sc::llvm_openmp_child_path()) << " (clang++-14, libomp; per-item code compiled by clang), "
+            << c.child->ready_line() << "; steals = chunks run off their static owner\n";
     }
   }
   a.child_note = child.str();

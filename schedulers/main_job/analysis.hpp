@@ -74,12 +74,12 @@ struct Analysis {
   nz::Usage before_usage, during_usage, after_usage;
   std::vector<std::string> noise_warnings;  // run-wide reasons that make every verdict unreliable
   std::vector<std::string> notes;           // context that does not invalidate (the machine before / after)
-  std::vector<Row> rows;                       // the schedulers asked about (calibration arms apart)
-  std::vector<CalibrationRow> calibration;     // --calibrate
-  std::vector<std::string> answer;             // the short answer, one sentence per P and stealing policy
-  std::string design_line;                     // how the verdicts were made
-  double median_mde_pct = 0;                   // the smallest change found with 80 % power, median over comparisons
-  double median_variance_removed_pct = 0;      // by the probe covariate, median over the comparisons with queue-mutex
+  std::vector<Row> rows;                    // the schedulers asked about (calibration arms apart)
+  std::vector<CalibrationRow> calibration;  // --calibrate
+  std::vector<std::string> answer;          // the short answer, one sentence per P and stealing policy
+  std::string design_line;                  // how the verdicts were made
+  double median_mde_pct = 0;                // the smallest change found with 80 % power, median over comparisons
+  double median_variance_removed_pct = 0;   // by the probe covariate, median over the comparisons with queue-mutex
   std::size_t verdicts = 0, unreliable = 0;
   bool problems = false;
   std::vector<SpreadRow> spreads;

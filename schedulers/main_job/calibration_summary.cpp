@@ -28,7 +28,9 @@ std::vector<CalibrationSeries> read_calibration_file(const std::string& path) {
   } catch (const std::exception& e) {
     throw std::runtime_error(path + ": not JSON: " + e.what());
   }
-  const report::Json* arms = doc.contains("arms") ? &doc["arms"] : doc.contains("calibration") ? &doc["calibration"] : nullptr;
+  const report::Json* arms = doc.contains("arms")          ? &doc["arms"]
+                             : doc.contains("calibration") ? &doc["calibration"]
+                                                           : nullptr;
   if (!arms || !arms->is_array() || arms->empty()) {
     throw std::runtime_error(path + ": no calibration arms (write it with frontsteal --calibrate)");
   }
@@ -109,15 +111,22 @@ std::string rate_text(std::size_t k, std::size_t n) {
 }
 
 report::Table tally_table(const std::map<std::string, measure::CalibrationTally>& tallies) {
-  report::Table t({{"arm", "P and arm", false}, {"n", "experiments"}, {"false", "false verdict", false},
-                   {"found", "found (interval beyond 0)", false}, {"right", "planted verdict", false},
-                   {"equivalent", "equivalent", false}, {"inconclusive", "inconclusive", false},
-                   {"covered", "planted size inside", false}, {"effect", "mean estimate (%)"}});
+  report::Table t({{"arm", "P and arm", false},
+                   {"n", "experiments"},
+                   {"false", "false verdict", false},
+                   {"found", "found (interval beyond 0)", false},
+                   {"right", "planted verdict", false},
+                   {"equivalent", "equivalent", false},
+                   {"inconclusive", "inconclusive", false},
+                   {"covered", "planted size inside", false},
+                   {"effect", "mean estimate (%)"}});
   for (const auto& [key, x] : tallies) {
     t.add_row({key, x.experiments, rate_text(x.false_verdicts(), x.experiments),
-               x.true_change == 0 ? "false difference " + rate_text(x.false_diff, x.experiments) : rate_text(x.found, x.experiments),
+               x.true_change == 0 ? "false difference " + rate_text(x.false_diff, x.experiments)
+                                  : rate_text(x.found, x.experiments),
                rate_text(x.right_verdicts(), x.experiments), rate_text(x.equivalent, x.experiments),
-               rate_text(x.inconclusive, x.experiments), rate_text(x.covered, x.experiments), fixed(x.mean_effect_pct(), 2)});
+               rate_text(x.inconclusive, x.experiments), rate_text(x.covered, x.experiments),
+               fixed(x.mean_effect_pct(), 2)});
   }
   return t;
 }
@@ -129,13 +138,16 @@ std::string acceptance(const std::map<std::string, measure::CalibrationTally>& t
     if (x.experiments == 0) continue;
     const double cover = x.rate(x.covered);
     if (x.true_change == 0) {
-      s << "- " << key << ": false verdicts " << fixed(100 * x.rate(x.false_verdicts()), 1) << " % (goal <= 5 %): "
-        << (x.rate(x.false_verdicts()) <= 0.05 ? "met" : "MISSED") << "; coverage " << fixed(100 * cover, 1)
-        << " % (goal >= 90 %): " << (cover >= 0.9 ? "met" : "MISSED") << "\n";
+      s << "- " << key << ": false verdicts " << fixed(100 * x.rate(x.false_verdicts()), 1)
+        << " % (goal <= 5 %): " << (x.rate(x.false_verdicts()) <= 0.05 ? "met" : "MISSED") << "; coverage "
+        << fixed(100 * cover, 1) << " % (goal >= 90 %): " << (cover >= 0.9 ? "met" : "MISSED") << "\n";
     } else {
-      const double goal = std::fabs(x.true_change - 0.02) < 1e-9 ? 0.80 : std::fabs(x.true_change) >= 0.05 - 1e-9 ? 0.95 : 0;
+      const double goal = std::fabs(x.true_change - 0.02) < 1e-9    ? 0.80
+                          : std::fabs(x.true_change) >= 0.05 - 1e-9 ? 0.95
+                                                                    : 0;
       s << "- " << key << ": found " << fixed(100 * x.rate(x.found), 1) << " %";
-      if (goal > 0) s << " (goal >= " << fixed(100 * goal, 0) << " %): " << (x.rate(x.found) >= goal ? "met" : "MISSED");
+      if (goal > 0)
+        s << " (goal >= " << fixed(100 * goal, 0) << " %): " << (x.rate(x.found) >= goal ? "met" : "MISSED");
       s << "; called " << (x.true_change > 0 ? "slower" : "faster") << " beyond the margin "
         << fixed(100 * x.rate(x.right_verdicts()), 1) << " %; coverage " << fixed(100 * cover, 1)
         << " % (goal >= 90 %): " << (cover >= 0.9 ? "met" : "MISSED") << "\n";
@@ -172,14 +184,17 @@ std::string calibration_markdown(const CalibrationSummary& s, const std::string&
     std::size_t lo = s.real_rounds.empty() ? 0 : *std::min_element(s.real_rounds.begin(), s.real_rounds.end());
     std::size_t hi = s.real_rounds.empty() ? 0 : *std::max_element(s.real_rounds.begin(), s.real_rounds.end());
     md << "## Real runs: " << s.real_files << " runs of `frontsteal --calibrate`, one experiment each (" << lo << "-"
-       << hi << " rounds)\n\n" << tally_table(s.real).markdown() << "\n" << acceptance(s.real) << "\n";
+       << hi << " rounds)\n\n"
+       << tally_table(s.real).markdown() << "\n"
+       << acceptance(s.real) << "\n";
   }
   if (!s.resampled.empty()) {
     md << "## Resampled: " << s.resampled_each << " experiments of " << s.resampled_rounds << " rounds from each of "
        << s.long_runs << " long run(s)\n\nThe experiments share rounds (each draws " << s.resampled_rounds
        << " of the long run's rounds), so they are not independent: the Wilson intervals below treat them as if they "
           "were and are too narrow; the rates themselves are unbiased estimates for a run of this size.\n\n"
-       << tally_table(s.resampled).markdown() << "\n" << acceptance(s.resampled) << "\n";
+       << tally_table(s.resampled).markdown() << "\n"
+       << acceptance(s.resampled) << "\n";
   }
   return md.str();
 }
@@ -188,21 +203,35 @@ report::Json calibration_summary_json(const CalibrationSummary& s) {
   auto tallies = [](const std::map<std::string, measure::CalibrationTally>& m) {
     report::Json out = report::Json::array();
     for (const auto& [key, x] : m) {
-      out.push_back({{"arm", key}, {"true_change_pct", 100 * x.true_change}, {"experiments", x.experiments},
-                     {"faster", x.faster}, {"slower", x.slower}, {"equivalent", x.equivalent},
-                     {"inconclusive", x.inconclusive}, {"too_few", x.too_few}, {"found", x.found},
-                     {"false_difference", x.false_diff}, {"covered", x.covered},
-                     {"false_verdict_rate", x.rate(x.false_verdicts())}, {"found_rate", x.rate(x.found)},
-                     {"planted_verdict_rate", x.rate(x.right_verdicts())}, {"coverage", x.rate(x.covered)},
+      out.push_back({{"arm", key},
+                     {"true_change_pct", 100 * x.true_change},
+                     {"experiments", x.experiments},
+                     {"faster", x.faster},
+                     {"slower", x.slower},
+                     {"equivalent", x.equivalent},
+                     {"inconclusive", x.inconclusive},
+                     {"too_few", x.too_few},
+                     {"found", x.found},
+                     {"false_difference", x.false_diff},
+                     {"covered", x.covered},
+                     {"false_verdict_rate", x.rate(x.false_verdicts())},
+                     {"found_rate", x.rate(x.found)},
+                     {"planted_verdict_rate", x.rate(x.right_verdicts())},
+                     {"coverage", x.rate(x.covered)},
                      {"mean_estimate_pct", x.mean_effect_pct()}});
     }
     return out;
   };
-  return {{"margin_pct", 100 * s.settings.margin}, {"adjusted", s.settings.adjust_for_probe},
+  return {{"margin_pct", 100 * s.settings.margin},
+          {"adjusted", s.settings.adjust_for_probe},
           {"instances_ignored", s.instances_ignored},
-          {"real_files", s.real_files}, {"real_rounds", s.real_rounds}, {"real", tallies(s.real)},
-          {"long_runs", s.long_runs}, {"resampled_experiments_each", s.resampled_each},
-          {"resampled_rounds", s.resampled_rounds}, {"resampled", tallies(s.resampled)}};
+          {"real_files", s.real_files},
+          {"real_rounds", s.real_rounds},
+          {"real", tallies(s.real)},
+          {"long_runs", s.long_runs},
+          {"resampled_experiments_each", s.resampled_each},
+          {"resampled_rounds", s.resampled_rounds},
+          {"resampled", tallies(s.resampled)}};
 }
 
 }  // namespace frontsteal::main_job

@@ -30,9 +30,13 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   bool no_adjust = false;
   cli.app().add_option("files", real, "calibration files, one real experiment each")->type_name("FILE");
-  cli.app().add_option("--long", long_runs, "long runs to resample experiments from")->type_name("FILE")->delimiter(',');
+  cli.app()
+      .add_option("--long", long_runs, "long runs to resample experiments from")
+      ->type_name("FILE")
+      ->delimiter(',');
   cli.option("--experiments", experiments, "experiments resampled from each long run")->type_name("N");
-  cli.option("--rounds", rounds, "rounds per resampled experiment (default: the median of the real runs')")->type_name("R");
+  cli.option("--rounds", rounds, "rounds per resampled experiment (default: the median of the real runs')")
+      ->type_name("R");
   cli.option("--margin", margin_pct, "equivalence margin (%)")->type_name("PCT");
   cli.flag("--no-adjust", no_adjust, "analyse with the raw interval instead of the probe-adjusted one");
   bool no_instances = false;
@@ -58,13 +62,14 @@ int main(int argc, char** argv) {
     }
     rounds = r.empty() ? 24 : static_cast<std::size_t>(frontsteal::median(r));
   }
-  const frontsteal::measure::Settings settings{.margin = margin_pct / 100, .confidence = 0.95,
-                                               .adjust_for_probe = !no_adjust};
+  const frontsteal::measure::Settings settings{
+      .margin = margin_pct / 100, .confidence = 0.95, .adjust_for_probe = !no_adjust};
   if (no_instances) {
     mj::ignore_instances(real_series);
     mj::ignore_instances(long_series);
   }
-  mj::CalibrationSummary summary = mj::summarize_calibration(real_series, long_series, experiments, rounds, settings, seed);
+  mj::CalibrationSummary summary =
+      mj::summarize_calibration(real_series, long_series, experiments, rounds, settings, seed);
   summary.instances_ignored = no_instances;
   const std::string md = mj::calibration_markdown(summary, frontsteal::cpu_model());
   std::cout << md;

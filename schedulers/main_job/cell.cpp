@@ -36,8 +36,8 @@ double account_frame(Cell& c, int f, const FrameOutcome& frame, std::uint64_t se
   if (frame.triangles != serial_triangles) {
     ++c.triangle_mismatches;
     if (c.first_problem.empty()) {
-      c.first_problem = at + std::to_string(frame.triangles) + " triangles, serial loop made " +
-                        std::to_string(serial_triangles);
+      c.first_problem =
+          at + std::to_string(frame.triangles) + " triangles, serial loop made " + std::to_string(serial_triangles);
     }
   }
   return static_cast<double>(st.wall_ns) / 1e6;

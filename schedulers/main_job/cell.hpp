@@ -37,24 +37,24 @@ struct Cell {
   double planted = 0;                        // planted extra work, as a fraction of the base's frame time
   std::vector<std::uint64_t> planted_steps;  // per frame: CPU-probe steps spun after the frame, inside the timing
   WorkerId workers = 0;
-  measure::HeapOffset heap_offset;                 // held while `instance` lives: a random shift of its memory
+  measure::HeapOffset heap_offset;  // held while `instance` lives: a random shift of its memory
   std::unique_ptr<sc::Scheduler> instance;
-  int instance_id = 0;                             // counts the instances built (recorded with every round)
-  std::unique_ptr<sc::LlvmOpenMpChild> child;      // openmp-static-steal: the child process instead of instance
-  std::string unavailable;                         // why this cell could not run ("" when it ran)
-  double setup_ms = 0;                             // construction (annealing included)
-  std::vector<double> path_ms;                     // per pass (the sum of its rounds)
-  std::vector<std::vector<double>> frame_ms;       // [pass][frame], the harness's clock
-  measure::ArmRounds rounds;                       // per round: the segment's time (ms, the harness's clock),
-                                                   // the CPU speed probe just before the arm ran, the segment
-  std::vector<double> round_planted_ms;            // [round]: of rounds.time, the planted work's time
-  double clock_gap_max_ms = 0;                     // largest |harness - planted - scheduler's wall_ns| per frame
-  std::uint64_t clock_gap_frames = 0;              // frames whose gap exceeds kClockGapBoundMs + 5 %
-  WorkerFrameStats totals;                         // summed over every frame of every pass
-  std::vector<WorkerFrameStats> per_worker;        // [worker], summed over every frame of every pass
-  nz::Usage usage;                                 // the machine while this cell's segments ran (all passes)
-  std::vector<std::vector<double>> busy_ratio;     // [pass][frame]: max/min of the workers' busy time
-  double busy_over_available = 0, available = 0;   // Σ busy, Σ wall × P (ns)
+  int instance_id = 0;                            // counts the instances built (recorded with every round)
+  std::unique_ptr<sc::LlvmOpenMpChild> child;     // openmp-static-steal: the child process instead of instance
+  std::string unavailable;                        // why this cell could not run ("" when it ran)
+  double setup_ms = 0;                            // construction (annealing included)
+  std::vector<double> path_ms;                    // per pass (the sum of its rounds)
+  std::vector<std::vector<double>> frame_ms;      // [pass][frame], the harness's clock
+  measure::ArmRounds rounds;                      // per round: the segment's time (ms, the harness's clock),
+                                                  // the CPU speed probe just before the arm ran, the segment
+  std::vector<double> round_planted_ms;           // [round]: of rounds.time, the planted work's time
+  double clock_gap_max_ms = 0;                    // largest |harness - planted - scheduler's wall_ns| per frame
+  std::uint64_t clock_gap_frames = 0;             // frames whose gap exceeds kClockGapBoundMs + 5 %
+  WorkerFrameStats totals;                        // summed over every frame of every pass
+  std::vector<WorkerFrameStats> per_worker;       // [worker], summed over every frame of every pass
+  nz::Usage usage;                                // the machine while this cell's segments ran (all passes)
+  std::vector<std::vector<double>> busy_ratio;    // [pass][frame]: max/min of the workers' busy time
+  double busy_over_available = 0, available = 0;  // Σ busy, Σ wall × P (ns)
   double imbalance_sum = 0, imbalance_max = 0;
   std::uint64_t frames_run = 0;
   std::uint64_t audit_failures = 0, triangle_mismatches = 0;

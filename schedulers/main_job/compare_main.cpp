@@ -55,10 +55,13 @@ int main(int argc, char** argv) {
   cli.app().add_option("pairs", pairs, "CANDIDATE REFERENCE [CANDIDATE REFERENCE ...]")->required();
   cli.option("--margin", margin_pct, "equivalence margin (%)")->type_name("PCT");
   cli.option("--estimator", estimator, "huber or mean (as frontsteal's --estimator)")
-      ->type_name("E")->check(CLI::IsMember({"huber", "mean"}));
+      ->type_name("E")
+      ->check(CLI::IsMember({"huber", "mean"}));
   cli.flag("--no-adjust", no_adjust, "the raw interval decides instead of the probe-adjusted one");
   cli.parse(argc, argv);
-  const ms::Settings settings{.margin = margin_pct / 100, .confidence = 0.95, .adjust_for_probe = !no_adjust,
+  const ms::Settings settings{.margin = margin_pct / 100,
+                              .confidence = 0.95,
+                              .adjust_for_probe = !no_adjust,
                               .estimator = estimator == "mean" ? ms::Estimator::kMean : ms::Estimator::kHuber};
   if (pairs.size() % 2 != 0) cli.usage_error("arms come in pairs: CANDIDATE REFERENCE");
   std::ifstream in(file);
@@ -73,8 +76,11 @@ int main(int argc, char** argv) {
     std::cerr << "frontsteal-compare: " << file << ": not JSON: " << e.what() << '\n';
     return 1;
   }
-  frontsteal::report::Table t({{"candidate", "candidate", false}, {"reference", "reference", false},
-                               {"rounds", "rounds"}, {"ratio", "ratio [95% CI]", false}, {"verdict", "verdict", false}});
+  frontsteal::report::Table t({{"candidate", "candidate", false},
+                               {"reference", "reference", false},
+                               {"rounds", "rounds"},
+                               {"ratio", "ratio [95% CI]", false},
+                               {"verdict", "verdict", false}});
   for (std::size_t i = 0; i < pairs.size(); i += 2) {
     ms::ArmRounds a, b;
     try {

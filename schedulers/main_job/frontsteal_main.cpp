@@ -49,10 +49,10 @@ int main(int argc, char** argv) {
   const bool auto_repeats = o.repeats == 0;
   std::string repeats_note = auto_repeats ? "auto" : "set by --repeats";
   progress.set_total(mj::progress_steps(o));
-  progress.step("serial warm-up pass (reference triangle counts, " + std::to_string(static_cast<int>(warm.seconds * 1000)) +
-                " ms); " + (auto_repeats ? std::string("a pilot of ") + std::to_string(mj::kPilotPasses) +
-                                               " passes sizes the run"
-                                         : std::to_string(o.repeats) + " passes") +
+  progress.step("serial warm-up pass (reference triangle counts, " +
+                std::to_string(static_cast<int>(warm.seconds * 1000)) + " ms); " +
+                (auto_repeats ? std::string("a pilot of ") + std::to_string(mj::kPilotPasses) + " passes sizes the run"
+                              : std::to_string(o.repeats) + " passes") +
                 "; a pass is " + std::to_string(mj::segments(o)) + " segments x " + std::to_string(mj::distinct_p(o)) +
                 " P = " + std::to_string(mj::segments(o) * mj::distinct_p(o)) + " rounds");
 
@@ -63,10 +63,25 @@ int main(int argc, char** argv) {
   if (!run.run_rounds(progress, auto_repeats, repeats_note)) return 1;
   run.finish();
 
-  const mj::Measured measured{o, cores, scene.wl, scene.wl.dense, warm.item_ns, warm.item_estimate,
-                              run.serial_path_ms(), run.serial_frame_ms(), run.serial_usage(), run.serial_probe(),
-                              run.serial_pass_usage(), run.serial_rounds(), run.cells(),
-                              run.not_available(), at_start, run.measure_start(), run.measure_end(), run.at_end(),
-                              repeats_note, run.co_runner_cpu()};
+  const mj::Measured measured{o,
+                              cores,
+                              scene.wl,
+                              scene.wl.dense,
+                              warm.item_ns,
+                              warm.item_estimate,
+                              run.serial_path_ms(),
+                              run.serial_frame_ms(),
+                              run.serial_usage(),
+                              run.serial_probe(),
+                              run.serial_pass_usage(),
+                              run.serial_rounds(),
+                              run.cells(),
+                              run.not_available(),
+                              at_start,
+                              run.measure_start(),
+                              run.measure_end(),
+                              run.at_end(),
+                              repeats_note,
+                              run.co_runner_cpu()};
   return mj::write_results(measured, progress.seconds());
 }

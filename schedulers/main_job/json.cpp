@@ -17,10 +17,13 @@ using report::Json;
 // data, each comparison's raw and adjusted interval); 2: the common header of reporting/.
 constexpr int kSchemaVersion = 3;
 
-
 Json usage_json(const nz::Usage& u, const nz::Thresholds& t) {
-  return {{"wall_s", u.wall_s}, {"windows", u.windows}, {"ticks", u.total_ticks}, {"other_share", u.other_share()},
-          {"steal_share", u.steal_share()}, {"busy", nz::assess(u, t).busy}};
+  return {{"wall_s", u.wall_s},
+          {"windows", u.windows},
+          {"ticks", u.total_ticks},
+          {"other_share", u.other_share()},
+          {"steal_share", u.steal_share()},
+          {"busy", nz::assess(u, t).busy}};
 }
 
 // {"worst", "worst_frame", "median", "per_frame"}; infinity (a worker with nothing) is null.
@@ -28,7 +31,10 @@ Json spread_json(const sc::CostSpread& c) {
   auto number = [](double v) { return std::isinf(v) ? Json(nullptr) : Json(v); };
   Json per_frame = Json::array();
   for (double v : c.per_frame) per_frame.push_back(number(v));
-  return {{"worst", number(c.worst)}, {"worst_frame", c.worst_frame}, {"median", number(c.median)}, {"per_frame", per_frame}};
+  return {{"worst", number(c.worst)},
+          {"worst_frame", c.worst_frame},
+          {"median", number(c.median)},
+          {"per_frame", per_frame}};
 }
 
 }  // namespace
@@ -48,37 +54,51 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
   js["hardware_threads"] = m.cores;
   js["repeats_note"] = m.repeats_note;
   js["answer"] = a.answer;
-  js["design"] = {{"line", a.design_line}, {"rounds", m.serial_rounds.size()}, {"passes", o.repeats},
-                  {"round_frames", o.round_frames}, {"instance_frames", o.instance_frames},
-                  {"order", measure::to_string(o.order)}, {"seed", o.seed},
-                  {"margin_pct", 100 * o.margin}, {"interval", std::string("Student t on the per-round log-ratios (") + measure::to_string(o.estimator) +
-                                  "), segments as blocks" +
-                                  (o.instance_frames > 0 ? ", cluster-robust over the schedulers' instances" : "")},
-                  {"covariate", o.adjust ? "CPU speed probe before each arm (regression adjustment)" : "none (--no-adjust)"},
-                  {"clock", "harness steady_clock around run_frame (openmp-static-steal: the child's clock)"},
-                  {"median_mde80_pct", a.median_mde_pct}};
+  js["design"] = {
+      {"line", a.design_line},
+      {"rounds", m.serial_rounds.size()},
+      {"passes", o.repeats},
+      {"round_frames", o.round_frames},
+      {"instance_frames", o.instance_frames},
+      {"order", measure::to_string(o.order)},
+      {"seed", o.seed},
+      {"margin_pct", 100 * o.margin},
+      {"interval", std::string("Student t on the per-round log-ratios (") + measure::to_string(o.estimator) +
+                       "), segments as blocks" +
+                       (o.instance_frames > 0 ? ", cluster-robust over the schedulers' instances" : "")},
+      {"covariate", o.adjust ? "CPU speed probe before each arm (regression adjustment)" : "none (--no-adjust)"},
+      {"clock", "harness steady_clock around run_frame (openmp-static-steal: the child's clock)"},
+      {"median_mde80_pct", a.median_mde_pct}};
   js["notes"] = a.notes;
   js["pinned"] = o.pin;
   js["path"] = ts::name(o.path);
   js["path_note"] = a.path_line;
   if (o.interference) {
-    js["interference"] = {{"on", true}, {"duty_pct", 100 * o.interference->duty},
-                          {"setup", o.interference->pinned ? "pinned" : "unpinned"}, {"period_ms", 10},
-                          {"co_runner_cpu", m.co_runner_cpu}, {"co_runner_core_share_measured", a.co_runner_core_share},
-                          {"serial_loop", "co-runner paused"}, {"note", a.interference_line}};
+    js["interference"] = {{"on", true},
+                          {"duty_pct", 100 * o.interference->duty},
+                          {"setup", o.interference->pinned ? "pinned" : "unpinned"},
+                          {"period_ms", 10},
+                          {"co_runner_cpu", m.co_runner_cpu},
+                          {"co_runner_core_share_measured", a.co_runner_core_share},
+                          {"serial_loop", "co-runner paused"},
+                          {"note", a.interference_line}};
   } else {
     js["interference"] = {{"on", false}};
   }
   Json spreads = Json::array();
   for (const SpreadRow& r : a.spreads) {
-    spreads.push_back({{"workers", r.p}, {"serial_item_times", spread_json(r.measured)},
+    spreads.push_back({{"workers", r.p},
+                       {"serial_item_times", spread_json(r.measured)},
                        {"estimates", spread_json(r.estimated)},
                        {"round_robin_busy", r.busy ? spread_json(*r.busy) : Json(nullptr)}});
   }
   js["round_robin_spread"] = spreads;
-  js["noise"] = {{"before", usage_json(a.before_usage, o.noise)}, {"during", usage_json(a.during_usage, o.noise)},
-                 {"after", usage_json(a.after_usage, o.noise)}, {"co_runner_share_during", a.during_usage.known_share()},
-                 {"load1_before", m.at_start.load1}, {"load1_after", m.at_end.load1},
+  js["noise"] = {{"before", usage_json(a.before_usage, o.noise)},
+                 {"during", usage_json(a.during_usage, o.noise)},
+                 {"after", usage_json(a.after_usage, o.noise)},
+                 {"co_runner_share_during", a.during_usage.known_share()},
+                 {"load1_before", m.at_start.load1},
+                 {"load1_after", m.at_end.load1},
                  {"serial_spread_pct", 100 * a.serial_spread},
                  {"cpu_probe_ns_per_million_steps", m.serial_probe},
                  {"cpu_probe_spread_pct", 100 * a.spread_diagnosis.probe_spread},
@@ -89,12 +109,17 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
                  {"serial_same_work_on_cpu", a.spread_diagnosis.same_work_on_cpu},
                  {"spread_diagnosis", a.spread_diagnosis.line},
                  {"busy_threshold_pct", 100 * o.noise.other_share},
-                 {"spread_threshold_pct", 100 * o.noise.spread}, {"verdicts", a.verdicts},
-                 {"unreliable_verdicts", a.unreliable}, {"warnings", a.noise_warnings}};
-  js["serial"] = {{"path_ms", a.t1_ms}, {"path_ms_per_repeat", m.serial_path_ms}, {"rounds", rounds_json(m.serial_rounds)},
+                 {"spread_threshold_pct", 100 * o.noise.spread},
+                 {"verdicts", a.verdicts},
+                 {"unreliable_verdicts", a.unreliable},
+                 {"warnings", a.noise_warnings}};
+  js["serial"] = {{"path_ms", a.t1_ms},
+                  {"path_ms_per_repeat", m.serial_path_ms},
+                  {"rounds", rounds_json(m.serial_rounds)},
                   {"triangles_per_frame", m.wl.serial_triangles},
                   {"inconsistent_surfaces_per_frame", m.wl.serial_inconsistencies},
-                  {"capped_surfaces_per_frame", m.wl.serial_capped}, {"max_steps", m.wl.settings.max_steps},
+                  {"capped_surfaces_per_frame", m.wl.serial_capped},
+                  {"max_steps", m.wl.settings.max_steps},
                   {"frame_ms_median", frame_medians(m.serial_frame_ms, o.frames)}};
   const Json rows = data.json();  // [0] is the serial loop, already under "serial"
   Json results = Json::array();
@@ -108,7 +133,9 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
     row["noise"] = usage_json(c.usage, o.noise);
     Json per_worker = Json::array();
     for (const WorkerFrameStats& ws : c.per_worker) {
-      per_worker.push_back({{"items", ws.items_processed}, {"busy_ms", ws.busy_ns / 1e6}, {"cpu_ms", ws.cpu_ns / 1e6},
+      per_worker.push_back({{"items", ws.items_processed},
+                            {"busy_ms", ws.busy_ns / 1e6},
+                            {"cpu_ms", ws.cpu_ns / 1e6},
                             {"active_ms", ws.active_ns / 1e6}});
     }
     row["per_worker"] = per_worker;
@@ -116,7 +143,8 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
     row["rounds"] = rounds_json(c.rounds);
     // openmp-static-steal is timed by its own process: there is no second clock to check it against.
     row["clock_check"] = c.child ? Json(nullptr)
-                                 : Json{{"max_gap_ms", c.clock_gap_max_ms}, {"frames_beyond_bound", c.clock_gap_frames},
+                                 : Json{{"max_gap_ms", c.clock_gap_max_ms},
+                                        {"frames_beyond_bound", c.clock_gap_frames},
                                         {"bound", "1 ms + 5 % of the scheduler's own frame time"}};
     row["frame_ms_median"] = frame_medians(c.frame_ms, o.frames);
     results.push_back(std::move(row));
@@ -129,7 +157,8 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
   js["not_available"] = not_available;
   Json children = Json::array();
   for (const Cell& c : m.cells) {
-    if (c.child) children.push_back({{"scheduler", c.scheduler}, {"workers", c.workers}, {"ready", c.child->ready_line()}});
+    if (c.child)
+      children.push_back({{"scheduler", c.scheduler}, {"workers", c.workers}, {"ready", c.child->ready_line()}});
   }
   js["child_processes"] = children;
   if (!a.calibration.empty()) js["calibration"] = calibration_json(m, a)["arms"];
@@ -147,9 +176,14 @@ Json calibration_json(const Measured& m, const Analysis& a) {
   js["seed"] = m.o.seed;
   Json arms = Json::array();
   for (const CalibrationRow& r : a.calibration) {
-    arms.push_back({{"workers", r.workers}, {"arm", r.label}, {"planted_pct", 100 * r.nominal},
-                    {"realized_pct", 100 * r.realized}, {"found", r.found()}, {"covered", r.covered()},
-                    {"right_verdict", r.right()}, {"comparison", r.result.json()},
+    arms.push_back({{"workers", r.workers},
+                    {"arm", r.label},
+                    {"planted_pct", 100 * r.nominal},
+                    {"realized_pct", 100 * r.realized},
+                    {"found", r.found()},
+                    {"covered", r.covered()},
+                    {"right_verdict", r.right()},
+                    {"comparison", r.result.json()},
                     {"rounds", {{"candidate", rounds_json(*r.candidate)}, {"reference", rounds_json(*r.reference)}}}});
   }
   js["arms"] = arms;

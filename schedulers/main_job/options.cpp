@@ -26,7 +26,8 @@ namespace report = frontsteal::report;
 
 namespace {
 
-constexpr const char* kDescription = R"(Tessellates a scene along a deterministic camera path (an orbit of the whole model, then a zoom into a small
+constexpr const char* kDescription =
+    R"(Tessellates a scene along a deterministic camera path (an orbit of the whole model, then a zoom into a small
 corner region: the case where round robin becomes imbalanced, paper §3) with a serial loop and with every
 scheduler at P = 1 ... cores and oversubscribed (2 x cores), measured side by side in one run, and says first,
 in plain words, whether stealing is faster than the locked queue and than the best other scheduler at each P.
@@ -92,7 +93,9 @@ namespace {
               << (s.contract == fs::Contract::kAtLeastOnce ? "  [at-least-once: not run on tessellation]" : "") << '\n';
   }
   std::cout << std::left << std::setw(22) << sc::kLlvmOpenMpName << sc::kLlvmOpenMpSummary
-            << (sc::llvm_openmp_unavailable_reason().empty() ? "" : "  [not available: " + sc::llvm_openmp_unavailable_reason() + "]")
+            << (sc::llvm_openmp_unavailable_reason().empty()
+                    ? ""
+                    : "  [not available: " + sc::llvm_openmp_unavailable_reason() + "]")
             << '\n';
   std::exit(0);
 }
@@ -120,7 +123,8 @@ std::vector<std::string> chosen_schedulers(const std::vector<std::string>& asked
     const sc::SchedulerInfo* s = sc::find_scheduler(name);
     if (!s) cli.usage_error("--schedulers: unknown scheduler '" + name + "' (see --list)");
     if (s->contract != fs::Contract::kExactlyOnce) {
-      cli.usage_error("--schedulers: " + name + " is at-least-once: a duplicated surface would be tessellated into "
+      cli.usage_error("--schedulers: " + name +
+                      " is at-least-once: a duplicated surface would be tessellated into "
                       "its buffer by two threads at once; the main job runs exactly-once schedulers only");
     }
     wanted.push_back(name);
@@ -136,8 +140,10 @@ Options parse_options(int argc, char** argv) {
   bool list = false, no_plot = false;
   cli.flag("--list", list, "list the schedulers and exit");
   cli.option("--scene", o.scene, "teapot | teacup | teaspoon | plant:N[:seed] | path to a model file")->type_name("S");
-  cli.app().add_option("--schedulers", o.schedulers, "comma-separated scheduler names, or all (default all; see --list)")
-      ->delimiter(',')->type_name("L");
+  cli.app()
+      .add_option("--schedulers", o.schedulers, "comma-separated scheduler names, or all (default all; see --list)")
+      ->delimiter(',')
+      ->type_name("L");
   std::vector<unsigned> threads;
   cli.threads(threads, "comma-separated worker counts P (default 1..cores, then 2 x cores)")->type_name("L");
   std::string path = "orbit-then-zoom";
@@ -145,7 +151,8 @@ Options parse_options(int argc, char** argv) {
              "camera path: orbit-then-zoom (half an orbit of the whole model, half a zoom into a corner), walkthrough "
              "(low among the parts, corner to corner), dense-zoom (from the overview to a close view of the densest "
              "region: a few surfaces' view-dependent cost dominates)")
-      ->type_name("K")->check(CLI::IsMember({"orbit-then-zoom", "walkthrough", "dense-zoom"}));
+      ->type_name("K")
+      ->check(CLI::IsMember({"orbit-then-zoom", "walkthrough", "dense-zoom"}));
   cli.option("--frames", o.frames, "frames along the path")->type_name("F")->check(CLI::Range(1, 100000));
   std::string repeats = "auto";
   cli.option("--repeats", repeats,
@@ -153,7 +160,8 @@ Options parse_options(int argc, char** argv) {
              "an interval, segments being blocks). auto: a pilot of 3 "
              "passes measures the spread of every comparison's per-round log-ratio, then the run is sized so that a "
              "change of the margin would be found with 80 % power, within --budget (at least 5 passes)")
-      ->type_name("R|auto")->check(validator([&](const std::string& v) -> std::string {
+      ->type_name("R|auto")
+      ->check(validator([&](const std::string& v) -> std::string {
         if (v == "auto") return {};
         try {
           std::size_t end = 0;
@@ -164,34 +172,40 @@ Options parse_options(int argc, char** argv) {
         return "expects auto or an integer in [1, 1000], got '" + v + "'";
       }));
   cli.option("--budget", o.budget_s, "seconds the measured rounds may take under --repeats auto")
-      ->type_name("S")->check(CLI::Range(1.0, 1e6));
+      ->type_name("S")
+      ->check(CLI::Range(1.0, 1e6));
   cli.option("--round-frames", o.round_frames,
              "frames per round: the path is split into segments of F frames, each a round in which every arm runs "
              "once (short rounds keep the members of a pair close in time)")
-      ->type_name("F")->check(CLI::Range(1, 100000));
+      ->type_name("F")
+      ->check(CLI::Range(1, 100000));
   cli.option("--instance-frames", o.instance_frames,
              "a fresh instance of every scheduler every F frames of each pass, at a random heap offset, after an "
              "untimed warm-up on the frame before (what it learns from frame to frame carries over); rounds of one "
              "instance are analysed as a cluster. Two instances of the same code differ by a few per cent for as "
              "long as they live; 0 keeps one instance per run and analyses its rounds as independent (a control: that "
              "interval misses the instances' offsets)")
-      ->type_name("F")->check(CLI::Range(0, 100000));
+      ->type_name("F")
+      ->check(CLI::Range(0, 100000));
   std::string order = "random";
   cli.option("--order", order,
              "order of the arms within a round: random (a fresh random order per round, from --seed), "
              "counterbalanced (A-B-B-A: every other round reversed), fixed (the same order every round: biased "
              "under drift, kept as a negative control)")
-      ->type_name("K")->check(CLI::IsMember({"random", "counterbalanced", "fixed"}));
+      ->type_name("K")
+      ->check(CLI::IsMember({"random", "counterbalanced", "fixed"}));
   double margin_pct = 100 * o.margin;
   cli.option("--margin", margin_pct,
              "equivalence margin m (%): faster / slower when the whole 95 % interval lies beyond +-m, equivalent "
              "when inside")
-      ->type_name("PCT")->check(CLI::Range(0.01, 100.0));
+      ->type_name("PCT")
+      ->check(CLI::Range(0.01, 100.0));
   std::string estimator = "huber";
   cli.option("--estimator", estimator,
              "location of the per-round log-ratios: huber (Huber's M-estimate, robust to the rounds in which the "
              "machine changed speed inside one arm's run) or mean (least squares, the textbook t interval)")
-      ->type_name("E")->check(CLI::IsMember({"huber", "mean"}));
+      ->type_name("E")
+      ->check(CLI::IsMember({"huber", "mean"}));
   bool no_adjust = false;
   cli.flag("--no-adjust", no_adjust,
            "verdicts from the raw interval instead of the one adjusted for the CPU speed probe (both are reported)");
@@ -200,9 +214,10 @@ Options parse_options(int argc, char** argv) {
            "the base scheduler (see below)");
   cli.option("--calibrate-base", o.calibrate_base, "the scheduler the calibration arms copy")->type_name("NAME");
   bool no_pin = false;
-  cli.flag("--pin", o.pin, "pin worker w (and the serial loop, as worker 0) to the w-th allowed CPU (the default: "
-                           "on these VMs the two vCPUs run at different speeds, and unpinned arms land on either, "
-                           "which widened the paired intervals 1.6-fold here)");
+  cli.flag("--pin", o.pin,
+           "pin worker w (and the serial loop, as worker 0) to the w-th allowed CPU (the default: "
+           "on these VMs the two vCPUs run at different speeds, and unpinned arms land on either, "
+           "which widened the paired intervals 1.6-fold here)");
   cli.flag("--no-pin", no_pin, "leave every thread where the OS puts it");
   std::string interference;
   cli.option("--interference", interference,
@@ -212,32 +227,43 @@ Options parse_options(int argc, char** argv) {
              "static lists cannot absorb); unpinned (default): nothing pinned, the OS places everything. Always "
              "killed and reaped at the end (and if frontsteal dies); its CPU time is reported apart and is not "
              "counted as noise (default off)")
-      ->type_name("DUTY[,pinned|unpinned]")->check(validator([](const std::string& v) {
+      ->type_name("DUTY[,pinned|unpinned]")
+      ->check(validator([](const std::string& v) {
         std::string why;
         return fi::parse_interference(v, &why) ? std::string() : "expects DUTY[,pinned|unpinned]: " + why;
       }));
   double noise_busy = 100 * o.noise.other_share, noise_spread = 100 * o.noise.spread;
   cli.option("--noise-busy", noise_busy,
              "share of the machine (%) other processes (or steal) may take before a run is unreliable")
-      ->type_name("PCT")->check(CLI::Range(0.0, 100.0));
+      ->type_name("PCT")
+      ->check(CLI::Range(0.0, 100.0));
   cli.option("--noise-spread", noise_spread,
              "spread max/min - 1 (%) of the serial loop's passes above which the spread line warns (information "
              "only: the verdicts rest on the paired rounds, not on the spread of single passes)")
-      ->type_name("PCT")->check(CLI::Range(0.0, 1000.0));
-  cli.option("--tolerance", o.tolerance, "screen-space tolerance in pixels")->type_name("PX")->check(CLI::Range(0.01, 1000.0));
+      ->type_name("PCT")
+      ->check(CLI::Range(0.0, 1000.0));
+  cli.option("--tolerance", o.tolerance, "screen-space tolerance in pixels")
+      ->type_name("PX")
+      ->check(CLI::Range(0.01, 1000.0));
   cli.option("--grain", o.grain,
              "items per claim of the chunked schedulers (queue, counter, Chase-Lev, TBB, OpenMP) (default: each "
              "scheduler's own: N/(100P) for queue and counter, 1 for the others)")
-      ->type_name("G")->default_str("")->check(CLI::Range(fs::ItemId{1}, std::numeric_limits<fs::ItemId>::max()));
+      ->type_name("G")
+      ->default_str("")
+      ->check(CLI::Range(fs::ItemId{1}, std::numeric_limits<fs::ItemId>::max()));
   std::string size = "1280x720";
-  cli.option("--size", size, "image size the steps are computed for")->type_name("WxH")->check(report::size_validator());
+  cli.option("--size", size, "image size the steps are computed for")
+      ->type_name("WxH")
+      ->check(report::size_validator());
   cli.seed(o.seed, "seed of victim orders and of the annealing")->type_name("S");
   cli.out(o.out)->type_name("DIR");
   cli.flag("--no-plot", no_plot, "do not run gnuplot (the .gp scripts are still written)");
   std::string defect;
-  cli.option("--plant-defect", defect,
-             "negative control: tessellate with a planted defect (wave1-bridge | drop-ear) to see the audit fail (exit 1)")
-      ->type_name("D")->check(CLI::IsMember({"wave1-bridge", "drop-ear"}));
+  cli.option(
+         "--plant-defect", defect,
+         "negative control: tessellate with a planted defect (wave1-bridge | drop-ear) to see the audit fail (exit 1)")
+      ->type_name("D")
+      ->check(CLI::IsMember({"wave1-bridge", "drop-ear"}));
   cli.quiet(o.quiet);
   cli.parse(argc, argv);
   if (list) print_list();

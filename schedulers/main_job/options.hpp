@@ -34,15 +34,15 @@ struct Options {
   int frames = 24;
   ts::CameraPathKind path = ts::CameraPathKind::orbit_then_zoom;
   std::optional<fi::InterferenceSpec> interference;  // absent: off
-  int repeats = 0;  // passes over the path; 0: auto (see --repeats)
+  int repeats = 0;                                   // passes over the path; 0: auto (see --repeats)
   double budget_s = 180;
-  int round_frames = 1;  // frames per round: the path is split into segments of this many frames
+  int round_frames = 1;     // frames per round: the path is split into segments of this many frames
   int instance_frames = 6;  // a fresh instance of every scheduler every this many frames (0: one per run)
   measure::OrderKind order = measure::OrderKind::kRandom;
-  double margin = 0.02;       // the verdicts' equivalence margin (fraction of time)
-  bool adjust = true;         // verdicts from the CPU-probe-adjusted interval
+  double margin = 0.02;  // the verdicts' equivalence margin (fraction of time)
+  bool adjust = true;    // verdicts from the CPU-probe-adjusted interval
   measure::Estimator estimator = measure::Estimator::kHuber;
-  bool calibrate = false;     // add the calibration arms (A/A twin, planted slowdowns)
+  bool calibrate = false;  // add the calibration arms (A/A twin, planted slowdowns)
   std::string calibrate_base = "queue-mutex";
   bool pin = true;
   nz::Thresholds noise;

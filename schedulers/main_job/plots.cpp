@@ -52,12 +52,14 @@ void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir&
       if (!r.vs_queue || !r.vs_queue->c.chosen().valid) continue;
       ++y;
       const measure::Decision d = r.vs_queue->c.decision;
-      const int group = !r.vs_queue->reliable ? 3
-                        : d == measure::Decision::kFaster ? 0
-                        : d == measure::Decision::kSlower ? 1
-                        : d == measure::Decision::kEquivalent ? 2 : 3;
+      const int group = !r.vs_queue->reliable                 ? 3
+                        : d == measure::Decision::kFaster     ? 0
+                        : d == measure::Decision::kSlower     ? 1
+                        : d == measure::Decision::kEquivalent ? 2
+                                                              : 3;
       if (g == 0) {
-        tics << (line++ ? ", " : "") << "\"P=" << r.cell->workers << " " << gnuplot_text(r.cell->scheduler) << "\" " << -y;
+        tics << (line++ ? ", " : "") << "\"P=" << r.cell->workers << " " << gnuplot_text(r.cell->scheduler) << "\" "
+             << -y;
       }
       if (group != g) continue;
       const measure::LogInterval& li = r.vs_queue->c.chosen();
@@ -93,20 +95,25 @@ void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir&
      << "set terminal pngcairo size 1200,760 font 'sans,10'\nset key outside right top\nset grid\n"
      << "set output 'frontsteal-speedup.png'\n"
      << "set title \"Paired speed-up over the serial loop (measured; per-round T1 / T(P), 95 % interval; open "
-        "marks: not decided): " << gnuplot_text(o.scene) << ", " << m.wl.model.surfaces.size()
-     << " surfaces\\n" << gnuplot_text(a.machine) << "; " << rounds << " rounds per comparison\"\n"
+        "marks: not decided): "
+     << gnuplot_text(o.scene) << ", " << m.wl.model.surfaces.size() << " surfaces\\n"
+     << gnuplot_text(a.machine) << "; " << rounds << " rounds per comparison\"\n"
      << "set xlabel 'workers P'\nset ylabel 'speed-up (T1 / T_P)'\nset xrange [0.5:" << max_p + 0.5 << "]\n"
      << "set yrange [0:*]\n"
-     << "plot for [i=0:" << o.schedulers.size() - 1 << "] 'frontsteal-speedup.dat' index i using 1:2 with "
-        "lines lt 1+i%8 dt 1+i/8 title columnheader(1), \\\n  for [i=0:" << o.schedulers.size() - 1
+     << "plot for [i=0:" << o.schedulers.size() - 1
+     << "] 'frontsteal-speedup.dat' index i using 1:2 with "
+        "lines lt 1+i%8 dt 1+i/8 title columnheader(1), \\\n  for [i=0:"
+     << o.schedulers.size() - 1
      << "] 'frontsteal-speedup.dat' index i using 1:2:3:4 with yerrorbars lt 1+i%8 pt 0 notitle, \\\n  for [i=0:"
-     << o.schedulers.size() - 1 << "] 'frontsteal-speedup.dat' index i using 1:5 with points lt 1+i%8 pt 7 notitle, \\\n"
+     << o.schedulers.size() - 1
+     << "] 'frontsteal-speedup.dat' index i using 1:5 with points lt 1+i%8 pt 7 notitle, \\\n"
      << "  for [i=0:" << o.schedulers.size() - 1
-     << "] 'frontsteal-speedup.dat' index i using 1:6 with points lt 1+i%8 pt 6 ps 1.5 notitle, \\\n  (x <= "
-     << m.cores << " ? x : " << m.cores << ") with lines dashtype 2 lc 'black' title 'ideal'\n"
+     << "] 'frontsteal-speedup.dat' index i using 1:6 with points lt 1+i%8 pt 6 ps 1.5 notitle, \\\n  (x <= " << m.cores
+     << " ? x : " << m.cores << ") with lines dashtype 2 lc 'black' title 'ideal'\n"
      << "set output 'frontsteal-verdicts.png'\n"
      << "set title \"Every scheduler against queue-mutex at the same P (measured): per-round time ratio to "
-        "queue-mutex, 95 % interval; shaded: the +-" << report::fixed_text(100 * o.margin, 1) << " % margin\\n"
+        "queue-mutex, 95 % interval; shaded: the +-"
+     << report::fixed_text(100 * o.margin, 1) << " % margin\\n"
      << gnuplot_text(a.machine) << "; " << rounds << " rounds per comparison\"\n"
      << "set xlabel 'time relative to queue-mutex (< 1: faster)'\nunset ylabel\nset ytics (" << tics.str()
      << ") font 'sans,8'\nset autoscale x\nset yrange [" << -(line + 1) << ":0]\nset key outside right top\n"
@@ -122,7 +129,8 @@ void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir&
              : std::string(" (path ") + ts::name(o.path) + ")")
      << (o.interference ? ", interference on" : "") << "'\n"
      << "set xlabel 'frame'\nset ylabel 'ms'\nset autoscale x\nset yrange [0:*]\n"
-     << "plot for [i=0:" << blocks - 1 << "] 'frontsteal-frames.dat' index i using 1:2 with linespoints "
+     << "plot for [i=0:" << blocks - 1
+     << "] 'frontsteal-frames.dat' index i using 1:2 with linespoints "
         "lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1)\n";
   dir.write("frontsteal.gp", gp.str());
   if (o.plot) dir.plot("frontsteal.gp");

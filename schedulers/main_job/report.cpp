@@ -39,18 +39,27 @@ std::string terminal_heading(const Measured& m, const Analysis& a) {
     << "ideal = T1 / min(P, " << m.cores << "); utilization = busy / (wall x P), summed over every frame; "
     << "imbalance = max/mean busy per frame, averaged; cpu, off-cpu = workers' thread CPU time and time "
     << "in the frame without a CPU, over wall x P\n"
-    << "passes: " << o.repeats << " (" << m.repeats_note << "); T_P/T_ref = exp of the robust (Huber) estimate of the per-round log-ratios "
+    << "passes: " << o.repeats << " (" << m.repeats_note
+    << "); T_P/T_ref = exp of the robust (Huber) estimate of the per-round log-ratios "
     << "with its 95 % t interval; verdict against +-" << fixed(100 * o.margin, 1) << " %, effect = change in time\n"
-    << a.path_line << "\n" << a.interference_line << "\n" << a.spread_summary << "\n\n";
+    << a.path_line << "\n"
+    << a.interference_line << "\n"
+    << a.spread_summary << "\n\n";
   return s.str();
 }
 
 // The calibration arms' verdicts (--calibrate): the method tested on this machine, in this run.
 std::string calibration_text(const Analysis& a) {
   if (a.calibration.empty()) return {};
-  report::Table t({{"workers", "P"}, {"arm", "calibration arm", false}, {"planted", "planted (%)"},
-                   {"realized", "realized (%)"}, {"interval", "ratio [95% CI]", false}, {"verdict", "verdict", false},
-                   {"found", "found", false}, {"covered", "realized inside", false}, {"sd", "sd/round (%)"},
+  report::Table t({{"workers", "P"},
+                   {"arm", "calibration arm", false},
+                   {"planted", "planted (%)"},
+                   {"realized", "realized (%)"},
+                   {"interval", "ratio [95% CI]", false},
+                   {"verdict", "verdict", false},
+                   {"found", "found", false},
+                   {"covered", "realized inside", false},
+                   {"sd", "sd/round (%)"},
                    {"removed", "variance removed (%)"}});
   for (const CalibrationRow& r : a.calibration) {
     t.add_row({r.workers, r.label, fixed(100 * r.nominal, 1), fixed(100 * r.realized, 2), r.result.interval_text(),
@@ -59,7 +68,8 @@ std::string calibration_text(const Analysis& a) {
                fixed(100 * r.result.c.variance_removed, 1)});
   }
   return "calibration arms (the method tested in this run: the A/A twin must not be faster or slower, planted "
-         "changes must be found):\n" + t.markdown();
+         "changes must be found):\n" +
+         t.markdown();
 }
 
 std::string markdown_report(const Measured& m, const Analysis& a, const std::string& table) {
@@ -67,20 +77,27 @@ std::string markdown_report(const Measured& m, const Analysis& a, const std::str
   std::ostringstream md;
   md << "# frontsteal main job (measured)\n\n"
      << "Scene `" << o.scene << "` (" << m.wl.model.surfaces.size() << " surfaces), " << o.frames
-     << " frames along the camera path `" << ts::name(o.path) << "`, " << o.repeats
-     << " passes (" << m.repeats_note << "), tolerance " << o.tolerance << " px, " << o.width << "x" << o.height
-     << ". Machine: " << a.machine << ". Commit " << FRONTSTEAL_GIT_COMMIT << ".\n\n"
-     << "## Answer\n\n" << answer_text(a) << "\n"
-     << "Verdicts: per round (the serial loop and every arm of one P once on one segment of the path, random order), the log-ratio "
-     << "T_P[r] / T_ref[r]; exp of its Huber estimate (segments as blocks) with its 95 % Student-t interval (adjusted for the CPU speed probe "
+     << " frames along the camera path `" << ts::name(o.path) << "`, " << o.repeats << " passes (" << m.repeats_note
+     << "), tolerance " << o.tolerance << " px, " << o.width << "x" << o.height << ". Machine: " << a.machine
+     << ". Commit " << FRONTSTEAL_GIT_COMMIT << ".\n\n"
+     << "## Answer\n\n"
+     << answer_text(a) << "\n"
+     << "Verdicts: per round (the serial loop and every arm of one P once on one segment of the path, random order), "
+        "the log-ratio "
+     << "T_P[r] / T_ref[r]; exp of its Huber estimate (segments as blocks) with its 95 % Student-t interval (adjusted "
+        "for the CPU speed probe "
      << "unless --no-adjust); faster / slower when the interval lies beyond +-" << fixed(100 * o.margin, 1)
      << " %, equivalent inside, inconclusive otherwise; effect = change in time. cpu and off-cpu: the "
      << "workers' thread CPU time and their time in the frame without a CPU, over wall x P.\n\n"
-     << "**" << a.path_line << "; " << a.interference_line << ".**\n\n```\n" << a.spread_summary << "\n```\n\n"
-     << table << '\n' << a.child_note << (a.child_note.empty() ? "" : "\n") << a.tessellation_audit << ".\n\n"
-     << a.spread_line << ".\n\n" << a.noise_line << ".\n"
+     << "**" << a.path_line << "; " << a.interference_line << ".**\n\n```\n"
+     << a.spread_summary << "\n```\n\n"
+     << table << '\n'
+     << a.child_note << (a.child_note.empty() ? "" : "\n") << a.tessellation_audit << ".\n\n"
+     << a.spread_line << ".\n\n"
+     << a.noise_line << ".\n"
      << (a.calibration.empty() ? "" : "\n" + calibration_text(a));
-  if (!a.warning.empty()) md << "\n**" << a.warning.substr(0, a.warning.find('\n')) << "**\n\n```\n" << a.warning << "```\n";
+  if (!a.warning.empty())
+    md << "\n**" << a.warning.substr(0, a.warning.find('\n')) << "**\n\n```\n" << a.warning << "```\n";
   return md.str();
 }
 
@@ -106,8 +123,10 @@ int write_results(const Measured& m, double elapsed_s) {
   const Options& o = m.o;
   const Analysis a = analyze(m);
   const std::string table = shown_table(m, a).markdown();
-  std::cout << terminal_heading(m, a) << table << '\n' << a.child_note << a.tessellation_audit << '\n'
-            << a.spread_line << '\n' << a.noise_line << '\n';
+  std::cout << terminal_heading(m, a) << table << '\n'
+            << a.child_note << a.tessellation_audit << '\n'
+            << a.spread_line << '\n'
+            << a.noise_line << '\n';
   if (!a.calibration.empty()) std::cout << '\n' << calibration_text(a);
   try {
     const report::ResultsDir dir(kProgram, o.out);
@@ -124,8 +143,8 @@ int write_results(const Measured& m, double elapsed_s) {
     write_plots(m, a, dir);
     std::cout << "\nwrote " << dir.file("frontsteal.json").string() << ", .csv, .md"
               << (o.plot ? ", frontsteal-speedup.png, frontsteal-verdicts.png, frontsteal-frames.png" : "")
-              << (a.calibration.empty() ? "" : ", frontsteal-calibration.{md,json}") << " ("
-              << fixed(elapsed_s, 0) << " s)\n";
+              << (a.calibration.empty() ? "" : ", frontsteal-calibration.{md,json}") << " (" << fixed(elapsed_s, 0)
+              << " s)\n";
   } catch (const std::exception& e) {
     std::cerr << kProgram << ": " << e.what() << '\n';
     return 1;

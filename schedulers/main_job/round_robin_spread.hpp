@@ -19,7 +19,7 @@ struct CostSpread {
   std::vector<double> per_frame;  // max / min over workers (infinity when a worker's sum is 0)
   double worst = 0;               // the largest per-frame ratio
   int worst_frame = -1;
-  double median = 0;              // of the per-frame ratios
+  double median = 0;  // of the per-frame ratios
 };
 
 // The per-frame ratios of given per-frame ratios (summary only).

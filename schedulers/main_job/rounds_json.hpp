@@ -11,7 +11,10 @@
 namespace frontsteal::main_job {
 
 inline report::Json rounds_json(const measure::ArmRounds& r) {
-  return {{"round", r.round}, {"ms", r.time}, {"probe_ns_per_million_steps", r.probe}, {"segment", r.block},
+  return {{"round", r.round},
+          {"ms", r.time},
+          {"probe_ns_per_million_steps", r.probe},
+          {"segment", r.block},
           {"instance", r.instance}};
 }
 

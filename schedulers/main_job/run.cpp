@@ -118,9 +118,7 @@ void Measurement::add_calibration_arms(const WarmUp& warm) {
   }
 }
 
-int Measurement::co_runner_cpu() const {
-  return o_.interference && o_.interference->pinned ? pinning_.cpu_of(0) : -1;
-}
+int Measurement::co_runner_cpu() const { return o_.interference && o_.interference->pinned ? pinning_.cpu_of(0) : -1; }
 
 void Measurement::pin_as(WorkerId w) const {
   if (o_.pin && t_pinned_as != static_cast<int>(w)) {
@@ -162,8 +160,10 @@ std::unique_ptr<sc::Scheduler> Measurement::make_instance(Cell& c, std::uint64_t
   c.instance.reset();
   c.heap_offset.redraw(o_.seed, draw);
   const sc::SchedulerInfo* info = sc::find_scheduler(c.scheduler);
-  sc::SchedulerConfig config{.workers = c.workers, .items = static_cast<ItemId>(wl_.model.surfaces.size()),
-                             .grain = o_.grain, .seed = o_.seed};
+  sc::SchedulerConfig config{.workers = c.workers,
+                             .items = static_cast<ItemId>(wl_.model.surfaces.size()),
+                             .grain = o_.grain,
+                             .seed = o_.seed};
   return info->make(config, hints_);
 }
 
@@ -235,8 +235,8 @@ void Measurement::renew_instances(int pass, int first_frame) {
 bool Measurement::start_interference() {
   if (!o_.interference) return true;
   try {
-    co_runner_ = fi::CoRunner::start({.duty = o_.interference->duty, .period_us = 10'000,
-                                      .cpu = o_.interference->pinned ? pinning_.cpu_of(0) : -1});
+    co_runner_ = fi::CoRunner::start(
+        {.duty = o_.interference->duty, .period_us = 10'000, .cpu = o_.interference->pinned ? pinning_.cpu_of(0) : -1});
   } catch (const std::exception& e) {
     std::cerr << kProgram << ": cannot start the interference co-runner: " << e.what() << '\n';
     return false;
@@ -432,12 +432,12 @@ int Measurement::passes_from_pilot(double pass_s, std::string& note) const {
   const int wanted = static_cast<int>(std::ceil(rounds / segments(o_)));
   const int fit = static_cast<int>(o_.budget_s / std::max(pass_s, 1e-9));
   const int passes = std::clamp(wanted, kMinPasses, std::max(kMinPasses, fit));
-  note = "auto: a pilot of " + std::to_string(kPilotPasses) + " passes (" + std::to_string(kPilotPasses * segments(o_)) +
-         " rounds per comparison, " + fixed(pass_s, 1) + " s per pass): per-round log-ratio spread " + fixed(100 * sd90, 2) +
-         " % (90th percentile of " + std::to_string(sds.size()) + " comparisons) -> " +
-         std::to_string(static_cast<int>(std::ceil(rounds))) + " rounds decide against +-" + fixed(100 * o_.margin, 1) +
-         " % with 80 % power; budget " + fixed(o_.budget_s, 0) + " s fits " + std::to_string(fit) +
-         " passes; chose " + std::to_string(passes);
+  note = "auto: a pilot of " + std::to_string(kPilotPasses) + " passes (" +
+         std::to_string(kPilotPasses * segments(o_)) + " rounds per comparison, " + fixed(pass_s, 1) +
+         " s per pass): per-round log-ratio spread " + fixed(100 * sd90, 2) + " % (90th percentile of " +
+         std::to_string(sds.size()) + " comparisons) -> " + std::to_string(static_cast<int>(std::ceil(rounds))) +
+         " rounds decide against +-" + fixed(100 * o_.margin, 1) + " % with 80 % power; budget " +
+         fixed(o_.budget_s, 0) + " s fits " + std::to_string(fit) + " passes; chose " + std::to_string(passes);
   return passes;
 }
 
@@ -466,8 +466,9 @@ bool Measurement::run_rounds(Progress& progress, bool auto_repeats, std::string&
       // Fresh instances where a new stretch of --instance-frames frames starts (the first pass's first
       // instances are start_cells' own).
       const int stretch_first = segment_frames(o_, s).first;
-      const bool new_stretch = o_.instance_frames > 0 &&
-                               (s == 0 || stretch_first / o_.instance_frames != segment_frames(o_, s - 1).first / o_.instance_frames);
+      const bool new_stretch =
+          o_.instance_frames > 0 &&
+          (s == 0 || stretch_first / o_.instance_frames != segment_frames(o_, s - 1).first / o_.instance_frames);
       if (new_stretch && (r > 0 || s > 0)) {
         try {
           renew_instances(r, stretch_first);
@@ -478,7 +479,8 @@ bool Measurement::run_rounds(Progress& progress, bool auto_repeats, std::string&
       }
       // The P of this segment's rounds, in an order of their own (the arms of different P are never compared
       // within a round, so each P's round holds only its arms and the serial loop: shorter rounds, closer pairs).
-      const std::size_t segment_id = static_cast<std::size_t>(r) * static_cast<std::size_t>(segs) + static_cast<std::size_t>(s);
+      const std::size_t segment_id =
+          static_cast<std::size_t>(r) * static_cast<std::size_t>(segs) + static_cast<std::size_t>(s);
       for (std::size_t pi : measure::round_order(ps_.size(), o_.seed ^ 0x5eedull, segment_id, o_.order)) {
         const std::size_t round = rounds_done_++;
         try {
@@ -491,8 +493,9 @@ bool Measurement::run_rounds(Progress& progress, bool auto_repeats, std::string&
       const auto [first, last] = segment_frames(o_, s);
       progress.step("pass " + std::to_string(r + 1) + "/" + std::to_string(o_.repeats) + ", frames " +
                     std::to_string(first) + "-" + std::to_string(last - 1) + ": rounds " +
-                    std::to_string(rounds_done_ - ps_.size() + 1) + "-" + std::to_string(rounds_done_) + " (one per P, " +
-                    measure::to_string(o_.order) + " order); serial loop " + fixed(serial_rounds_.time.back(), 1) + " ms");
+                    std::to_string(rounds_done_ - ps_.size() + 1) + "-" + std::to_string(rounds_done_) +
+                    " (one per P, " + measure::to_string(o_.order) + " order); serial loop " +
+                    fixed(serial_rounds_.time.back(), 1) + " ms");
     }
     serial_probe_.push_back(pass_probe_min_);
     if (r == 0) resize_planted_work();

@@ -54,9 +54,9 @@ class Measurement {
   Measurement(Options& o, Workload& wl, FrameTessellator& tess, const WarmUp& warm);
 
   // Constructs every cell's scheduler (static partitions computed here, timed; the first instance of each
-  // cell; run_rounds builds fresh ones every o.instance_frames frames) and runs one untimed warm-up frame; openmp-static-steal starts its child per P (it warms up itself). Cells that cannot start are moved
-  // to not_available() and reported, not measured. False (after a message) when an in-process scheduler
-  // cannot start.
+  // cell; run_rounds builds fresh ones every o.instance_frames frames) and runs one untimed warm-up frame;
+  // openmp-static-steal starts its child per P (it warms up itself). Cells that cannot start are moved to
+  // not_available() and reported, not measured. False (after a message) when an in-process scheduler cannot start.
   bool start_cells(const sc::WorkloadHints& hints);
   // --interference: starts the co-runner (after the warm-ups). False (after a message) when it cannot start.
   bool start_interference();
@@ -111,18 +111,18 @@ class Measurement {
   fi::CoRunner co_runner_;
   ExecutionCounter runs_;
   std::vector<Cell> cells_, not_available_;
-  std::vector<double> serial_path_ms_;               // per pass
+  std::vector<double> serial_path_ms_;                // per pass
   std::vector<std::vector<double>> serial_frame_ms_;  // [pass][frame]
-  std::vector<nz::Usage> serial_usage_;  // per pass: the machine while the serial loop ran
-  std::vector<double> serial_probe_;     // per pass: the smallest CPU speed probe before its segments
-  std::vector<nz::PassUsage> serial_pass_usage_;  // per pass: what the serial loop's thread did (pass_usage.hpp)
-  measure::ArmRounds serial_rounds_;              // per round: the serial loop's segment time, probe, segment
-  double pass_probe_min_ = 0;                     // the smallest probe before the serial loop's segments this pass
-  std::vector<WorkerId> ps_;                      // the P of the rounds: every P some cell runs at
+  std::vector<nz::Usage> serial_usage_;               // per pass: the machine while the serial loop ran
+  std::vector<double> serial_probe_;                  // per pass: the smallest CPU speed probe before its segments
+  std::vector<nz::PassUsage> serial_pass_usage_;      // per pass: what the serial loop's thread did (pass_usage.hpp)
+  measure::ArmRounds serial_rounds_;                  // per round: the serial loop's segment time, probe, segment
+  double pass_probe_min_ = 0;                         // the smallest probe before the serial loop's segments this pass
+  std::vector<WorkerId> ps_;                          // the P of the rounds: every P some cell runs at
   std::size_t rounds_done_ = 0;
-  sc::WorkloadHints hints_;                       // kept for the instances built after the first
-  std::uint64_t instances_built_ = 1'000'000;     // draws of the heap offsets after start_cells' own
-  std::uint64_t retired_child_ticks_ = 0;         // CPU ticks of the children replaced by fresh ones
+  sc::WorkloadHints hints_;                    // kept for the instances built after the first
+  std::uint64_t instances_built_ = 1'000'000;  // draws of the heap offsets after start_cells' own
+  std::uint64_t retired_child_ticks_ = 0;      // CPU ticks of the children replaced by fresh ones
   nz::ProcSample measure_start_, measure_end_, at_end_;
 };
 

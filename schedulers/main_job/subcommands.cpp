@@ -16,36 +16,84 @@ namespace fsys = std::filesystem;
 
 const std::vector<Subcommand>& subcommands() {
   static const std::vector<Subcommand> table = {
-      {"run", "", "schedulers", {}, "the main job (also bare `frontsteal`): every scheduler on tessellation, "
-                                    "in rounds, with verdicts"},
-      {"calibrate", "", "schedulers", {"--calibrate"}, "the main job with its A/A twin and planted slowdowns "
-                                                       "(run --calibrate)"},
+      {"run",
+       "",
+       "schedulers",
+       {},
+       "the main job (also bare `frontsteal`): every scheduler on tessellation, "
+       "in rounds, with verdicts"},
+      {"calibrate",
+       "",
+       "schedulers",
+       {"--calibrate"},
+       "the main job with its A/A twin and planted slowdowns "
+       "(run --calibrate)"},
       {"compare", "frontsteal-compare", "schedulers", {}, "any two arms of a frontsteal.json, round by round"},
-      {"calibration-summary", "frontsteal-calibration-summary", "schedulers", {},
+      {"calibration-summary",
+       "frontsteal-calibration-summary",
+       "schedulers",
+       {},
        "A/A and planted-effect rates over many calibrate runs"},
-      {"paper", "frontsteal-paper", "papers", {}, "the paper's Table 1, Fig. 8, Table 2, and the simulator's "
-                                                  "validation"},
-      {"simulate", "frontsteal-paper", "papers", {"simulate"}, "replays a cost trace through the schedulers' "
-                                                               "models for P = 1 ... 64 (paper simulate)"},
-      {"tessellate", "frontsteal-tessellate", "tessellate", {}, "tessellates a scene along the path and audits "
-                                                                "every surface; exports a frame"},
-      {"import", "frontsteal-import", "tessellate", {}, "STEP / IGES / BREP files into a frontsteal model "
-                                                        "(Open CASCADE)"},
+      {"paper",
+       "frontsteal-paper",
+       "papers",
+       {},
+       "the paper's Table 1, Fig. 8, Table 2, and the simulator's "
+       "validation"},
+      {"simulate",
+       "frontsteal-paper",
+       "papers",
+       {"simulate"},
+       "replays a cost trace through the schedulers' "
+       "models for P = 1 ... 64 (paper simulate)"},
+      {"tessellate",
+       "frontsteal-tessellate",
+       "tessellate",
+       {},
+       "tessellates a scene along the path and audits "
+       "every surface; exports a frame"},
+      {"import",
+       "frontsteal-import",
+       "tessellate",
+       {},
+       "STEP / IGES / BREP files into a frontsteal model "
+       "(Open CASCADE)"},
       {"render", "frontsteal-render", "render", {}, "greedy rendering along the path, headless (EGL)"},
       {"view", "frontsteal-view", "render", {}, "greedy rendering live in a window"},
-      {"modelcheck", "frontsteal-modelcheck", "models_check", {}, "Relacy: the protocol under every policy, "
-                                                                  "mutation kill matrix, certificate"},
-      {"modelcheck-publication", "frontsteal-modelcheck-publication", "models_check", {},
+      {"modelcheck",
+       "frontsteal-modelcheck",
+       "models_check",
+       {},
+       "Relacy: the protocol under every policy, "
+       "mutation kill matrix, certificate"},
+      {"modelcheck-publication",
+       "frontsteal-modelcheck-publication",
+       "models_check",
+       {},
        "Relacy: greedy rendering's publication and reclamation"},
-      {"modelcheck-chaselev", "frontsteal-modelcheck-chaselev", "models_check", {},
+      {"modelcheck-chaselev",
+       "frontsteal-modelcheck-chaselev",
+       "models_check",
+       {},
        "Relacy: the Chase-Lev deque baseline"},
-      {"stress", "frontsteal-stress", "stress", {}, "the protocol on real threads, every item audited "
-                                                    "(TSan build: the stress preset)"},
-      {"stress-publication", "frontsteal-stress-publication", "stress", {},
+      {"stress",
+       "frontsteal-stress",
+       "stress",
+       {},
+       "the protocol on real threads, every item audited "
+       "(TSan build: the stress preset)"},
+      {"stress-publication",
+       "frontsteal-stress-publication",
+       "stress",
+       {},
        "greedy rendering's publication on real threads with chaos"},
       {"mpi", "frontsteal-mpi", "distributed", {}, "the frame loop across MPI ranks (start with mpirun)"},
-      {"mpi-simulate", "frontsteal-mpi-simulate", "distributed", {}, "the MPI schedulers' efficiency, "
-                                                                     "simulated from measured latencies"},
+      {"mpi-simulate",
+       "frontsteal-mpi-simulate",
+       "distributed",
+       {},
+       "the MPI schedulers' efficiency, "
+       "simulated from measured latencies"},
   };
   return table;
 }

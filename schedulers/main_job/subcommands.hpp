@@ -19,11 +19,11 @@
 namespace frontsteal::main_job {
 
 struct Subcommand {
-  std::string_view name;        // what the user types after `frontsteal`
-  std::string_view program;     // the executable it runs ("" = the main job in this process)
-  std::string_view build_dir;   // the program's folder in the build tree
+  std::string_view name;                  // what the user types after `frontsteal`
+  std::string_view program;               // the executable it runs ("" = the main job in this process)
+  std::string_view build_dir;             // the program's folder in the build tree
   std::vector<std::string_view> leading;  // arguments put before the user's
-  std::string_view summary;     // one line for `frontsteal --help`
+  std::string_view summary;               // one line for `frontsteal --help`
 };
 
 const std::vector<Subcommand>& subcommands();
@@ -42,8 +42,8 @@ std::optional<std::string> locate_program(std::string_view program, std::string_
 // (options, or nothing): returns untouched; an argument that is neither an option nor a subcommand is a
 // usage error (message, exit status 2).
 struct Dispatch {
-  std::vector<std::string> args;  // the main job's arguments, argv[0] first
-  std::optional<int> exit_status; // set: main returns it at once
+  std::vector<std::string> args;   // the main job's arguments, argv[0] first
+  std::optional<int> exit_status;  // set: main returns it at once
 };
 Dispatch dispatch(int argc, char** argv);
 

@@ -17,12 +17,22 @@ std::string fixed(double v, int digits) { return report::fixed_text(v, digits); 
 // the two comparisons) after lock waits, audit last.
 report::Table shown_table(const Measured& m, const Analysis& a) {
   const bool text = false;
-  report::Table t({{"workers", "P"}, {"scheduler", "scheduler", text}, {"frames_per_s", "frames/s"},
-                   {"speedup", "speed-up"}, {"ideal_pct", "% of ideal"}, {"utilization_pct", "utilization"},
-                   {"imbalance_mean", "imbalance"}, {"steals", "steals (failed)"}, {"lock_waits", "lock waits"},
-                   {"cpu_pct", "cpu"}, {"off_cpu_pct", "off-cpu"}, {"ratio_vs_serial", "T_P/T1 [95% CI]", text},
-                   {"verdict_vs_serial", "vs serial", text}, {"ratio_vs_queue", "T_P/T_queue [95% CI]", text},
-                   {"verdict_vs_queue", "vs queue-mutex", text}, {"audit", "audit", text}});
+  report::Table t({{"workers", "P"},
+                   {"scheduler", "scheduler", text},
+                   {"frames_per_s", "frames/s"},
+                   {"speedup", "speed-up"},
+                   {"ideal_pct", "% of ideal"},
+                   {"utilization_pct", "utilization"},
+                   {"imbalance_mean", "imbalance"},
+                   {"steals", "steals (failed)"},
+                   {"lock_waits", "lock waits"},
+                   {"cpu_pct", "cpu"},
+                   {"off_cpu_pct", "off-cpu"},
+                   {"ratio_vs_serial", "T_P/T1 [95% CI]", text},
+                   {"verdict_vs_serial", "vs serial", text},
+                   {"ratio_vs_queue", "T_P/T_queue [95% CI]", text},
+                   {"verdict_vs_queue", "vs queue-mutex", text},
+                   {"audit", "audit", text}});
   t.add_row({1, "serial loop (T1)", fixed(1000.0 * m.o.frames / a.t1_ms, 2), "1.00", "100.0", "-", "-", "-", "-", "-",
              "-", "reference", "-", "-", "-", "-"});
   for (const Row& r : a.rows) {
@@ -46,19 +56,36 @@ report::Table shown_table(const Measured& m, const Analysis& a) {
 // The data (frontsteal.csv, and each row of frontsteal.json's results[]): full precision, the serial loop first.
 report::Table data_table(const Measured& m, const Analysis& a) {
   const bool text = false;
-  report::Table t({{"workers", "P"}, {"scheduler", "scheduler", text}, {"path_ms", "path (ms)"},
-                   {"frames_per_s", "frames/s"}, {"speedup", "speed-up"}, {"ideal_pct", "% of ideal"},
-                   {"utilization_pct", "utilization (%)"}, {"imbalance_mean", "imbalance"},
-                   {"imbalance_max", "max imbalance"}, {"steals", "steals"}, {"steal_attempts", "steal attempts"},
-                   {"lock_waits", "lock waits"}, {"lock_wait_ms", "lock wait (ms)"}, {"setup_ms", "set-up (ms)"},
-                   {"audit_failures", "audit failures"}, {"triangle_mismatches", "triangle mismatches"},
-                   {"tessellation_inconsistencies", "tessellation inconsistencies"}, {"cpu_pct", "cpu (%)"},
-                   {"off_cpu_pct", "off-cpu (%)"}, {"path_spread_pct", "spread (%)"},
-                   {"ratio_vs_serial", "T_P/T1"}, {"ratio_vs_serial_ci_low", "T_P/T1 low"},
-                   {"ratio_vs_serial_ci_high", "T_P/T1 high"}, {"verdict_vs_serial", "vs serial", text},
-                   {"effect_vs_serial_pct", "effect vs serial (%)"}, {"ratio_vs_queue", "T_P/T_queue"},
-                   {"ratio_vs_queue_ci_low", "T_P/T_queue low"}, {"ratio_vs_queue_ci_high", "T_P/T_queue high"},
-                   {"verdict_vs_queue", "vs queue-mutex", text}, {"effect_vs_queue_pct", "effect vs queue-mutex (%)"},
+  report::Table t({{"workers", "P"},
+                   {"scheduler", "scheduler", text},
+                   {"path_ms", "path (ms)"},
+                   {"frames_per_s", "frames/s"},
+                   {"speedup", "speed-up"},
+                   {"ideal_pct", "% of ideal"},
+                   {"utilization_pct", "utilization (%)"},
+                   {"imbalance_mean", "imbalance"},
+                   {"imbalance_max", "max imbalance"},
+                   {"steals", "steals"},
+                   {"steal_attempts", "steal attempts"},
+                   {"lock_waits", "lock waits"},
+                   {"lock_wait_ms", "lock wait (ms)"},
+                   {"setup_ms", "set-up (ms)"},
+                   {"audit_failures", "audit failures"},
+                   {"triangle_mismatches", "triangle mismatches"},
+                   {"tessellation_inconsistencies", "tessellation inconsistencies"},
+                   {"cpu_pct", "cpu (%)"},
+                   {"off_cpu_pct", "off-cpu (%)"},
+                   {"path_spread_pct", "spread (%)"},
+                   {"ratio_vs_serial", "T_P/T1"},
+                   {"ratio_vs_serial_ci_low", "T_P/T1 low"},
+                   {"ratio_vs_serial_ci_high", "T_P/T1 high"},
+                   {"verdict_vs_serial", "vs serial", text},
+                   {"effect_vs_serial_pct", "effect vs serial (%)"},
+                   {"ratio_vs_queue", "T_P/T_queue"},
+                   {"ratio_vs_queue_ci_low", "T_P/T_queue low"},
+                   {"ratio_vs_queue_ci_high", "T_P/T_queue high"},
+                   {"verdict_vs_queue", "vs queue-mutex", text},
+                   {"effect_vs_queue_pct", "effect vs queue-mutex (%)"},
                    {"reliable", "reliable", text}});
   auto num = [](double v) { return report::Cell::fixed(v, 3); };
   const report::Cell none = report::Cell::empty();
@@ -83,12 +110,26 @@ report::Table data_table(const Measured& m, const Analysis& a) {
   };
   for (const Row& r : a.rows) {
     const Cell& c = *r.cell;
-    std::vector<report::Cell> row{c.workers, c.scheduler, num(r.path_ms), num(r.fps), num(r.speedup), num(r.ideal_pct),
-                                  num(r.utilization), num(r.imbalance_mean), num(c.imbalance_max),
-                                  c.totals.steals_succeeded, c.totals.steal_attempts, c.totals.lock_waits,
-                                  num(c.totals.lock_wait_ns / 1e6), num(c.setup_ms), c.audit_failures,
-                                  c.triangle_mismatches, c.tessellation_inconsistencies, num(r.cpu_pct),
-                                  num(r.off_cpu_pct), num(r.spread_pct)};
+    std::vector<report::Cell> row{c.workers,
+                                  c.scheduler,
+                                  num(r.path_ms),
+                                  num(r.fps),
+                                  num(r.speedup),
+                                  num(r.ideal_pct),
+                                  num(r.utilization),
+                                  num(r.imbalance_mean),
+                                  num(c.imbalance_max),
+                                  c.totals.steals_succeeded,
+                                  c.totals.steal_attempts,
+                                  c.totals.lock_waits,
+                                  num(c.totals.lock_wait_ns / 1e6),
+                                  num(c.setup_ms),
+                                  c.audit_failures,
+                                  c.triangle_mismatches,
+                                  c.tessellation_inconsistencies,
+                                  num(r.cpu_pct),
+                                  num(r.off_cpu_pct),
+                                  num(r.spread_pct)};
     comparison(row, &r.vs_serial);
     comparison(row, r.vs_queue ? &*r.vs_queue : nullptr);
     row.emplace_back(r.vs_serial.reliable && (!r.vs_queue || r.vs_queue->reliable));

@@ -22,8 +22,13 @@ PreparedScene prepare_scene(const Options& o, unsigned cores) {
   PreparedScene scene;
   Workload& wl = scene.wl;
   const auto load_start = std::chrono::steady_clock::now();
-  ts::PathSceneOptions po{.scene = o.scene, .data_dir = FRONTSTEAL_DATA_DIR, .path = o.path, .frames = o.frames,
-                          .width = o.width, .height = o.height, .settings = {}};
+  ts::PathSceneOptions po{.scene = o.scene,
+                          .data_dir = FRONTSTEAL_DATA_DIR,
+                          .path = o.path,
+                          .frames = o.frames,
+                          .width = o.width,
+                          .height = o.height,
+                          .settings = {}};
   po.settings.pixel_tolerance = o.tolerance;
   po.settings.planted_defect = o.planted_defect;
   try {
@@ -38,9 +43,10 @@ PreparedScene prepare_scene(const Options& o, unsigned cores) {
   scene.hints.costs = wl.estimated_costs(0);
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   if (!o.quiet) {
-    std::fprintf(stderr, "frontsteal: scene %s: %u surfaces, %d frames (path %s), %s, %u hardware threads; "
-                 "prepared in %.2f s\n", o.scene.c_str(), n, o.frames, ts::name(o.path), fs::cpu_model().c_str(), cores,
-                 load_s);
+    std::fprintf(stderr,
+                 "frontsteal: scene %s: %u surfaces, %d frames (path %s), %s, %u hardware threads; "
+                 "prepared in %.2f s\n",
+                 o.scene.c_str(), n, o.frames, ts::name(o.path), fs::cpu_model().c_str(), cores, load_s);
   }
   return scene;
 }

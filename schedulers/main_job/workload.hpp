@@ -48,5 +48,4 @@ struct WarmUp {
 };
 WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess);
 
-
 }  // namespace frontsteal::main_job

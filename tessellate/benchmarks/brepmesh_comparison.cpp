@@ -47,7 +47,8 @@ namespace fsys = std::filesystem;
 using bm::Options;
 
 constexpr const char* kProgram = "brepmesh_comparison";
-constexpr const char* kDescription = R"(Meshes the real CAD files (occt-misc, calculix-cgx-examples, gmsh-doc) with frontsteal's tessellator and with
+constexpr const char* kDescription =
+    R"(Meshes the real CAD files (occt-misc, calculix-cgx-examples, gmsh-doc) with frontsteal's tessellator and with
 Open CASCADE's BRepMesh_IncrementalMesh at the same object-space deviation, and compares time, triangles and
 the measured deviation. Prints the table and writes brepmesh.{md,csv,json} to --out.)";
 
@@ -56,14 +57,23 @@ Options parse(int argc, char** argv) {
   Options o;
   frontsteal::report::CommandLine cli(kProgram, kDescription);
   cli.option("--repeats", o.repeats, "timed runs per configuration (median, min, max)")
-      ->type_name("R")->check(CLI::Range(1, 1000));
+      ->type_name("R")
+      ->check(CLI::Range(1, 1000));
   cli.option("--eps", o.eps_fractions, "ε as fractions of the bounding-box diagonal, comma-separated")
-      ->type_name("LIST")->delimiter(',')->check(CLI::Range(1e-7, 0.5));
+      ->type_name("LIST")
+      ->delimiter(',')
+      ->check(CLI::Range(1e-7, 0.5));
   cli.option("--angle", o.angle, "BRepMesh's angular deflection (3.0: practically off)")
-      ->type_name("RAD")->check(CLI::Range(0.01, 3.2));
-  cli.option("--max-steps", o.max_steps, "our step cap per direction and patch")->type_name("N")->check(CLI::Range(1, 8192));
-  cli.app().add_option("--file", o.files, "compare this file only (repeatable; default: the five files of occt-misc, "
-                                          "calculix-cgx-examples and gmsh-doc)")->type_name("PATH");
+      ->type_name("RAD")
+      ->check(CLI::Range(0.01, 3.2));
+  cli.option("--max-steps", o.max_steps, "our step cap per direction and patch")
+      ->type_name("N")
+      ->check(CLI::Range(1, 8192));
+  cli.app()
+      .add_option("--file", o.files,
+                  "compare this file only (repeatable; default: the five files of occt-misc, "
+                  "calculix-cgx-examples and gmsh-doc)")
+      ->type_name("PATH");
   cli.out(o.out)->type_name("DIR");
   cli.parse(argc, argv);
   if (o.files.empty()) {

@@ -130,7 +130,8 @@ void measure_occt(const TopoDS_Face& face, Deviation& dev) {
 
 TopoDS_Shape read_shape(const std::string& path) {
   std::string ext = fsys::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".step" || ext == ".stp") {
     STEPControl_Reader reader;
     if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw std::runtime_error(path + ": STEP read failed");
@@ -145,7 +146,8 @@ TopoDS_Shape read_shape(const std::string& path) {
   }
   BRep_Builder builder;
   TopoDS_Shape shape;
-  if (!BRepTools::Read(shape, path.c_str(), builder) || shape.IsNull()) throw std::runtime_error(path + ": BREP read failed");
+  if (!BRepTools::Read(shape, path.c_str(), builder) || shape.IsNull())
+    throw std::runtime_error(path + ": BREP read failed");
   return shape;
 }
 

@@ -59,7 +59,15 @@ void BM_frame(benchmark::State& state) {
 }  // namespace
 
 // Orbit frames 0–7, zoom frames 8–15.
-BENCHMARK(BM_frame)->Args({0, kPathFrames / 2 - 1})->Name("frame_15906/orbit")->Unit(benchmark::kMillisecond)->MinTime(3.0);
-BENCHMARK(BM_frame)->Args({kPathFrames / 2, kPathFrames - 1})->Name("frame_15906/zoom")->Unit(benchmark::kMillisecond)->MinTime(3.0);
+BENCHMARK(BM_frame)
+    ->Args({0, kPathFrames / 2 - 1})
+    ->Name("frame_15906/orbit")
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(3.0);
+BENCHMARK(BM_frame)
+    ->Args({kPathFrames / 2, kPathFrames - 1})
+    ->Name("frame_15906/zoom")
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(3.0);
 
 BENCHMARK_MAIN();

@@ -45,7 +45,8 @@ ts::Surface& holed_patch() {
     constexpr int kSegments = 64;
     for (int k = 0; k < kSegments; ++k) {
       const double a0 = -2 * M_PI * k / kSegments, a1 = -2 * M_PI * (k + 1) / kSegments;
-      hole.segments.push_back({{{0.5 + 0.3 * std::cos(a0), 0.5 + 0.3 * std::sin(a0)}, {0.5 + 0.3 * std::cos(a1), 0.5 + 0.3 * std::sin(a1)}}});
+      hole.segments.push_back({{{0.5 + 0.3 * std::cos(a0), 0.5 + 0.3 * std::sin(a0)},
+                                {0.5 + 0.3 * std::cos(a1), 0.5 + 0.3 * std::sin(a1)}}});
     }
     hole.segments.back().control.back() = hole.segments.front().control.front();
     out.loops = {domain, hole};
@@ -80,10 +81,14 @@ static void GLAPIENTRY on_normal(GLfloat* n, void* data) {
 static void GLAPIENTRY on_end(void* data) {
   auto* s = static_cast<GluSink*>(data);
   const std::size_t n = s->primitive_vertices;
-  if (s->type == GL_TRIANGLES) s->triangles += n / 3;
-  else if (n >= 3 && (s->type == GL_TRIANGLE_STRIP || s->type == GL_TRIANGLE_FAN || s->type == GL_QUAD_STRIP)) s->triangles += n - 2;
+  if (s->type == GL_TRIANGLES)
+    s->triangles += n / 3;
+  else if (n >= 3 && (s->type == GL_TRIANGLE_STRIP || s->type == GL_TRIANGLE_FAN || s->type == GL_QUAD_STRIP))
+    s->triangles += n - 2;
 }
-static void GLAPIENTRY on_error(GLenum code) { std::fprintf(stderr, "GLU NURBS error %u: %s\n", code, gluErrorString(code)); }
+static void GLAPIENTRY on_error(GLenum code) {
+  std::fprintf(stderr, "GLU NURBS error %u: %s\n", code, gluErrorString(code));
+}
 }
 
 struct Glu {
@@ -136,15 +141,18 @@ struct Glu {
     for (int i = 0; i <= p.degree_u; ++i) {
       for (int j = 0; j <= p.degree_v; ++j) {
         const glm::dvec4& h = p.homogeneous(i, j);
-        ctl.insert(ctl.end(), {static_cast<float>(h.x), static_cast<float>(h.y), static_cast<float>(h.z), static_cast<float>(h.w)});
+        ctl.insert(ctl.end(), {static_cast<float>(h.x), static_cast<float>(h.y), static_cast<float>(h.z),
+                               static_cast<float>(h.w)});
       }
     }
     gluBeginSurface(nurbs);
-    gluNurbsSurface(nurbs, static_cast<GLint>(uknots.size()), uknots.data(), static_cast<GLint>(vknots.size()), vknots.data(),
-                    4 * (p.degree_v + 1), 4, ctl.data(), p.degree_u + 1, p.degree_v + 1, GL_MAP2_VERTEX_4);
+    gluNurbsSurface(nurbs, static_cast<GLint>(uknots.size()), uknots.data(), static_cast<GLint>(vknots.size()),
+                    vknots.data(), 4 * (p.degree_v + 1), 4, ctl.data(), p.degree_u + 1, p.degree_v + 1,
+                    GL_MAP2_VERTEX_4);
     for (const ts::TrimLoop& loop : s.loops) {
       std::vector<GLfloat> pts;
-      for (const ts::TrimSegment& seg : loop.segments) pts.insert(pts.end(), {static_cast<float>(seg.control.front().x), static_cast<float>(seg.control.front().y)});
+      for (const ts::TrimSegment& seg : loop.segments)
+        pts.insert(pts.end(), {static_cast<float>(seg.control.front().x), static_cast<float>(seg.control.front().y)});
       pts.insert(pts.end(), {pts[0], pts[1]});
       gluBeginTrim(nurbs);
       gluPwlCurve(nurbs, static_cast<GLint>(pts.size() / 2), pts.data(), 2, GLU_MAP1_TRIM_2);
@@ -255,7 +263,8 @@ void BM_ours_teapot_at_pixel_tolerance(benchmark::State& state) {
   ts::TriangleBuffers out;
   std::size_t triangles = 0;
   for (auto _ : state) {
-    for (const ts::PreparedSurface& p : prepared) triangles += ts::tessellate_surface(p, cam, frustum, settings, scratch, out).triangles;
+    for (const ts::PreparedSurface& p : prepared)
+      triangles += ts::tessellate_surface(p, cam, frustum, settings, scratch, out).triangles;
   }
   report(state, triangles, prepared.size());
   state.SetLabel("tolerance " + std::to_string(settings.pixel_tolerance) + " px");

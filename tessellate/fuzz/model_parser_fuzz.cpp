@@ -44,7 +44,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ts::TessellationScratch scratch;
   ts::TriangleBuffers tri;
   for (const ts::Surface& s : model.surfaces) {
-    const ts::SurfaceResult r = ts::tessellate_surface(ts::prepare_surface(s), cam, ts::Frustum::of(cam), settings, scratch, tri);
+    const ts::SurfaceResult r =
+        ts::tessellate_surface(ts::prepare_surface(s), cam, ts::Frustum::of(cam), settings, scratch, tri);
     if (r.inconsistencies() > 0) std::abort();
     for (std::uint32_t index : tri.indices) {
       if (index >= tri.positions.size()) std::abort();

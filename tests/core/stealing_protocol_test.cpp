@@ -66,8 +66,8 @@ struct Stage {
 
 }  // namespace
 
-TEMPLATE_TEST_CASE("a steal without overlap takes the second half and leaves the first", "[core][protocol]",
-                   fs::SeqCst, fs::Paper, fs::Fenced, fs::Asymmetric) {
+TEMPLATE_TEST_CASE("a steal without overlap takes the second half and leaves the first", "[core][protocol]", fs::SeqCst,
+                   fs::Paper, fs::Fenced, fs::Asymmetric) {
   if (!policy_usable<TestType>()) return;
   Stage<TestType> s(10);
   s.owner().install(RangeList{{0, 3}, {3, 6}, {6, 10}});  // 10 items in three ranges
@@ -102,13 +102,13 @@ TEMPLATE_TEST_CASE("the thief waits on ListTransient and skips the item the owne
   // The owner claims 2 and 3, then starts claiming 4 while the End it reads is still 6.
   REQUIRE(s.claim() == 2u);
   REQUIRE(s.claim() == 3u);
-  owner.announce();                       // O1
-  owner.storeload_fence();                // F1
+  owner.announce();                            // O1
+  owner.storeload_fence();                     // F1
   const std::uint32_t end = owner.read_end();  // O2 reads 6: the thief has not shrunk yet
   CHECK(end == 6u);
 
-  thief.shrink_victim(s.slot());          // T3: End := 4
-  thief.storeload_fence();                // F2
+  thief.shrink_victim(s.slot());                  // T3: End := 4
+  thief.storeload_fence();                        // F2
   CHECK_FALSE(thief.victim_quiescent(s.slot()));  // T4 sees the claim in flight and must wait
 
   const auto claimed = owner.finish_claim(end);  // O3, O4: item 4 is the owner's
@@ -173,14 +173,14 @@ TEMPLATE_TEST_CASE("store buffering at the handshake: Paper runs an item twice, 
     REQUIRE(thief.lock_victim(s.slot()));
     REQUIRE(thief.plan_share(s.slot()));
     const std::uint32_t end = owner.read_end();  // O2 executes while O1 is still buffered: reads End = 2
-    thief.shrink_victim(s.slot());                // T3: End := 1
-    thief.storeload_fence();                      // F2 (none under Paper)
-    REQUIRE(thief.victim_quiescent(s.slot()));    // T4 reads ListTransient = 0: O1 not yet visible
+    thief.shrink_victim(s.slot());               // T3: End := 1
+    thief.storeload_fence();                     // F2 (none under Paper)
+    REQUIRE(thief.victim_quiescent(s.slot()));   // T4 reads ListTransient = 0: O1 not yet visible
     const std::uint32_t front_after = thief.reread_front(s.slot());  // T5 reads 1
     thief.unlock_victim(s.slot());
     REQUIRE(thief.keep_unclaimed(front_after) == StealOutcome::kStolen);  // keeps item 1
-    owner.announce();                             // O1 drains from the store buffer
-    const auto claimed = owner.finish_claim(end); // O3: claims item 1 too
+    owner.announce();                                                     // O1 drains from the store buffer
+    const auto claimed = owner.finish_claim(end);                         // O3: claims item 1 too
     REQUIRE(claimed == 1u);
     s.runs.record(*claimed);
     s.install_share();

@@ -20,8 +20,8 @@
 namespace fs = frontsteal;
 using fs::ItemId;
 using fs::RangeList;
-using fs::WorkerId;
 using fs::spin_work;
+using fs::WorkerId;
 
 namespace {
 
@@ -190,7 +190,8 @@ TEST_CASE("edge sizes: one worker, more workers than items, empty frames", "[cor
   }
 }
 
-TEST_CASE("an item that throws: the frame completes, the caller gets the item id, the next frame runs", "[core][scheduler]") {
+TEST_CASE("an item that throws: the frame completes, the caller gets the item id, the next frame runs",
+          "[core][scheduler]") {
   const ItemId n = 500;
   fs::StealingScheduler<fs::Fenced> scheduler({.workers = 3, .items = n});
   const auto dog = watched(scheduler);
@@ -238,8 +239,8 @@ TEST_CASE("reseed installs a static allocation and rejects one that is not a par
   scheduler.reseed(round_robin);
   CHECK(scheduler.allocation() == round_robin);
   CHECK_THROWS_AS(scheduler.reseed({{{0, 6}}, {{5, 12}}}), std::invalid_argument);  // 5 twice
-  CHECK_THROWS_AS(scheduler.reseed({{{0, 12}}}), std::invalid_argument);             // one list for two workers
-  CHECK(scheduler.allocation() == round_robin);                                       // nothing half-applied
+  CHECK_THROWS_AS(scheduler.reseed({{{0, 12}}}), std::invalid_argument);            // one list for two workers
+  CHECK(scheduler.allocation() == round_robin);                                     // nothing half-applied
   fs::ExecutionCounter runs(n);
   scheduler.run_frame([&](ItemId id, WorkerId) { runs.record(id); });
   CHECK(runs.audit_and_reset().exactly_once());
@@ -277,7 +278,8 @@ fs::ExecutionAudit run_forced_steal(fs::WatchdogOptions options = {}) {
 
 }  // namespace
 
-TEST_CASE("a forced steal completes under a sound policy (the control of the planted hang)", "[core][scheduler][watchdog]") {
+TEST_CASE("a forced steal completes under a sound policy (the control of the planted hang)",
+          "[core][scheduler][watchdog]") {
   const fs::ExecutionAudit audit = run_forced_steal<fs::Fenced>();
   INFO(audit);
   CHECK(audit.exactly_once());
@@ -286,7 +288,8 @@ TEST_CASE("a forced steal completes under a sound policy (the control of the pla
 // The watchdog's negative control, hidden from the normal run ("[.]"): it must end the process with
 // kWatchdogExitCode and a report. tests/CMakeLists.txt runs it as watchdog.catches_planted_hang and checks
 // the exit code, the report's lines and the time it took.
-TEST_CASE("planted hang: the owner never retracts ListTransient and the watchdog ends the frame", "[.][watchdog-control]") {
+TEST_CASE("planted hang: the owner never retracts ListTransient and the watchdog ends the frame",
+          "[.][watchdog-control]") {
   fs::WatchdogOptions options;
   options.stall_seconds = 2;  // short, and never reached by the sound control above (it finishes in ms)
   (void)run_forced_steal<fs::BrokenNeverRetracts>(options);

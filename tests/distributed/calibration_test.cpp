@@ -25,9 +25,9 @@ namespace {
 std::vector<mpi::CalibrationRow> every_operation() {
   std::vector<mpi::CalibrationRow> rows;
   double ns = 100;
-  for (std::string_view name : {ops::kGet, ops::kPut, ops::kCompareAndSwap, ops::kFetchAndOp, ops::kFlush, ops::kWinSync,
-                                ops::kClaimWithSync, ops::kClaim, ops::kProgressCall, ops::kRequestPoll, ops::kPingPong,
-                                ops::kClockFloor}) {
+  for (std::string_view name :
+       {ops::kGet, ops::kPut, ops::kCompareAndSwap, ops::kFetchAndOp, ops::kFlush, ops::kWinSync, ops::kClaimWithSync,
+        ops::kClaim, ops::kProgressCall, ops::kRequestPoll, ops::kPingPong, ops::kClockFloor}) {
     rows.push_back({std::string(name), ns, ns - 1, ns + 1, 1000, false});
     ns += 100;
   }
@@ -37,8 +37,8 @@ std::vector<mpi::CalibrationRow> every_operation() {
 class TempFile {
  public:
   explicit TempFile(const std::string& text)
-      : path_(fs::temp_directory_path() / ("frontsteal-calibration-" + std::to_string(::getpid()) + "-" +
-                                           std::to_string(counter_++) + ".json")) {
+      : path_(fs::temp_directory_path() /
+              ("frontsteal-calibration-" + std::to_string(::getpid()) + "-" + std::to_string(counter_++) + ".json")) {
     std::ofstream(path_) << text;
   }
   ~TempFile() { fs::remove(path_); }
@@ -74,7 +74,8 @@ TEST_CASE("the simulator reads back every latency the calibration writes", "[dis
   CHECK(l.source.find("osc/sm") != std::string::npos);
 }
 
-TEST_CASE("a transport that needs the target's progress is recognised from the calibration", "[distributed][calibration]") {
+TEST_CASE("a transport that needs the target's progress is recognised from the calibration",
+          "[distributed][calibration]") {
   mpi::ProgressChoice tcp = shared_memory();
   tcp.one_node = false;
   const TempFile across_nodes(mpi::calibration_json(every_operation(), 2, tcp).dump());
@@ -100,7 +101,8 @@ TEST_CASE("an atomic costs at least 50 ns of its home rank's time", "[distribute
   CHECK(sim::latencies_from_calibration(file.path()).atomic_service == 50);
 }
 
-TEST_CASE("a calibration without an operation the simulator needs is refused, naming it", "[distributed][calibration]") {
+TEST_CASE("a calibration without an operation the simulator needs is refused, naming it",
+          "[distributed][calibration]") {
   std::vector<mpi::CalibrationRow> rows = every_operation();
   std::erase_if(rows, [](const mpi::CalibrationRow& r) { return r.operation == ops::kPingPong; });
   const TempFile file(mpi::calibration_json(rows, 2, shared_memory()).dump());

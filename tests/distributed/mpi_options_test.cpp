@@ -62,10 +62,32 @@ TEST_CASE("no flags: the defaults the docs promise", "[distributed][options]") {
 }
 
 TEST_CASE("every value of a full command line arrives", "[distributed][options]") {
-  const mpi::Options o = parse({"--scene", "synthetic:500", "--frames", "4", "--schedulers", "rma,static",
-                                "--work-ns", "10", "--skew", "3", "--stall", "1:2:30", "--die", "2:3",
-                                "--plant-defect", "skip-reread", "--owner-progress", "10", "--owner-fence", "win-sync",
-                                "--require-steals", "--quiet", "--json", "out.json", "--plots", "plots"});
+  const mpi::Options o = parse({"--scene",
+                                "synthetic:500",
+                                "--frames",
+                                "4",
+                                "--schedulers",
+                                "rma,static",
+                                "--work-ns",
+                                "10",
+                                "--skew",
+                                "3",
+                                "--stall",
+                                "1:2:30",
+                                "--die",
+                                "2:3",
+                                "--plant-defect",
+                                "skip-reread",
+                                "--owner-progress",
+                                "10",
+                                "--owner-fence",
+                                "win-sync",
+                                "--require-steals",
+                                "--quiet",
+                                "--json",
+                                "out.json",
+                                "--plots",
+                                "plots"});
   CHECK(o.scene == "synthetic:500");
   CHECK(o.frames == 4);
   CHECK(o.schedulers == std::vector<std::string>{"rma", "static"});

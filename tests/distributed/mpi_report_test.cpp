@@ -71,7 +71,7 @@ TEST_CASE("the run plots hold the frame and per-rank data, with their script and
   std::ifstream ranks(dir / "frontsteal-mpi-ranks.dat");
   const std::string r((std::istreambuf_iterator<char>(ranks)), std::istreambuf_iterator<char>());
   CHECK(r.find("\"rma r0\" 1.5 0.25 0\n") != std::string::npos);  // 0.117 s of frames < busy + idle: 0
-  CHECK(r.find("\"rma r1\" 0 0 0.117\n") != std::string::npos);  // the whole frame time is "the rest"
+  CHECK(r.find("\"rma r1\" 0 0 0.117\n") != std::string::npos);   // the whole frame time is "the rest"
   CHECK(r.find("\"static r1\"") != std::string::npos);
   CHECK(fs::exists(dir / "frontsteal-mpi.gp"));
   CHECK(fs::file_size(dir / "frontsteal-mpi-frames.png") > 1000);

@@ -15,12 +15,12 @@ TEST_CASE("a gate of U microseconds opens at most once every U", "[distributed][
   mpi::PollGate gate(50);
   CHECK(gate.enabled());
   const Clock::time_point t0 = Clock::now();
-  CHECK(gate.due(t0));                       // the first call is due at once
+  CHECK(gate.due(t0));  // the first call is due at once
   CHECK_FALSE(gate.due(t0 + microseconds(1)));
   CHECK_FALSE(gate.due(t0 + microseconds(49)));
-  CHECK(gate.due(t0 + microseconds(50)));    // U after the last one
+  CHECK(gate.due(t0 + microseconds(50)));  // U after the last one
   CHECK_FALSE(gate.due(t0 + microseconds(99)));
-  CHECK(gate.due(t0 + microseconds(400)));   // a long item: due once, not once per missed interval
+  CHECK(gate.due(t0 + microseconds(400)));  // a long item: due once, not once per missed interval
   CHECK_FALSE(gate.due(t0 + microseconds(401)));
 }
 

@@ -45,8 +45,8 @@ TEST_CASE("every simulated scheduler runs each item exactly once per frame", "[r
   for (const bool tcp : {false, true}) {
     sim::Latencies lat = shared_memory_like();
     lat.needs_target_progress = tcp;
-    for (sim::Scheduler s : {sim::Scheduler::kRma, sim::Scheduler::kRequest, sim::Scheduler::kCentral,
-                             sim::Scheduler::kStatic}) {
+    for (sim::Scheduler s :
+         {sim::Scheduler::kRma, sim::Scheduler::kRequest, sim::Scheduler::kCentral, sim::Scheduler::kStatic}) {
       for (int ranks : {2, 16, 64}) {
         const sim::Result r = sim::simulate(s, ranks, small(), lat);
         INFO(sim::to_string(s) << ", " << ranks << " ranks, tcp " << tcp << ": " << r.audit_failure);

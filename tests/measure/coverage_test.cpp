@@ -37,7 +37,7 @@ struct Tallies {
   ms::CalibrationTally twin, planted;
   double variance_removed_sum = 0;  // over both comparisons of every seed
   std::size_t adjusted_used = 0;
-  std::vector<double> half_width;   // of the chosen interval (log scale), both comparisons of every seed
+  std::vector<double> half_width;  // of the chosen interval (log scale), both comparisons of every seed
   double mean_variance_removed() const { return variance_removed_sum / (2.0 * static_cast<double>(twin.experiments)); }
   double median_half_width() const {
     std::vector<double> h = half_width;
@@ -63,8 +63,8 @@ Tallies run_seeds(const ms::SpeedModel& model, const ms::Settings& settings, ms:
   t.planted.true_change = kPlanted;
   for (std::size_t i = 0; i < seeds; ++i) {
     const std::uint64_t seed = 0xc0ffee + 104729ull * i;
-    const ms::SyntheticRun run = ms::simulate_rounds(model, {0.3, 0.3, 0.3 * (1.0 + kPlanted)}, 30, 4, kind, seed,
-                                                     {1.0, 1.3, 0.8, 1.1});
+    const ms::SyntheticRun run =
+        ms::simulate_rounds(model, {0.3, 0.3, 0.3 * (1.0 + kPlanted)}, 30, 4, kind, seed, {1.0, 1.3, 0.8, 1.1});
     const ms::PairedResult twin = ms::analyze_pairs(ms::pairs_of(run, 1, 0), settings);
     const ms::PairedResult planted = ms::analyze_pairs(ms::pairs_of(run, 2, 0), settings);
     t.twin.add(twin, 0);
@@ -147,10 +147,10 @@ ms::PairedResult made_result(ms::Decision decision, double low, double high) {
 TEST_CASE("CalibrationTally counts verdicts, coverage and findings of hand-made results", "[calibration]") {
   // An A/A pair: the truth is 0.
   ms::CalibrationTally aa;
-  aa.add(made_result(ms::Decision::kEquivalent, -0.01, 0.012), 0);  // covers 0
-  aa.add(made_result(ms::Decision::kSlower, 0.03, 0.05), 0);        // misses 0 above: a false difference
+  aa.add(made_result(ms::Decision::kEquivalent, -0.01, 0.012), 0);     // covers 0
+  aa.add(made_result(ms::Decision::kSlower, 0.03, 0.05), 0);           // misses 0 above: a false difference
   aa.add(made_result(ms::Decision::kInconclusive, -0.04, -0.001), 0);  // misses 0 below
-  aa.add(made_result(ms::Decision::kTooFewRounds, 0, 0), 0);        // counted as an experiment only
+  aa.add(made_result(ms::Decision::kTooFewRounds, 0, 0), 0);           // counted as an experiment only
   CHECK(aa.experiments == 4);
   CHECK(aa.equivalent == 1);
   CHECK(aa.slower == 1);
@@ -164,8 +164,7 @@ TEST_CASE("CalibrationTally counts verdicts, coverage and findings of hand-made 
   CHECK(aa.right_verdicts() == 1);  // equivalent
   CHECK(aa.rate(aa.covered) == Approx(0.25));
   // The mean change leaves the too-few experiment out: mean of exp(0.001), exp(0.04), exp(-0.0205), minus 1.
-  const double mean_pct =
-      100.0 * ((std::exp(0.001) - 1.0) + (std::exp(0.04) - 1.0) + (std::exp(-0.0205) - 1.0)) / 3.0;
+  const double mean_pct = 100.0 * ((std::exp(0.001) - 1.0) + (std::exp(0.04) - 1.0) + (std::exp(-0.0205) - 1.0)) / 3.0;
   CHECK(aa.mean_effect_pct() == Approx(mean_pct).epsilon(1e-12));
 
   // A planted 5 % slowdown: the truth is log 1.05 = 0.0488.
@@ -254,13 +253,11 @@ TEST_CASE("on heavy-tailed rounds Huber's interval covers at the nominal rate an
   const double ratio = huber.median_half_width() / mean.median_half_width();
   for (const Tallies* t : {&mean, &huber}) {
     const ms::Estimator e = t == &mean ? ms::Estimator::kMean : ms::Estimator::kHuber;
-    WARN("heavy tails (raw, " << ms::to_string(e) << ", " << kSeeds
-                              << " seeds): coverage twin " << t->twin.rate(t->twin.covered) << ", planted "
-                              << t->planted.rate(t->planted.covered) << "; A/A false verdicts "
-                              << t->twin.rate(t->twin.false_verdicts()) << "; planted found "
-                              << t->planted.rate(t->planted.found) << ", mean effect "
-                              << t->planted.mean_effect_pct() << " %; median half-width "
-                              << t->median_half_width());
+    WARN("heavy tails (raw, " << ms::to_string(e) << ", " << kSeeds << " seeds): coverage twin "
+                              << t->twin.rate(t->twin.covered) << ", planted " << t->planted.rate(t->planted.covered)
+                              << "; A/A false verdicts " << t->twin.rate(t->twin.false_verdicts()) << "; planted found "
+                              << t->planted.rate(t->planted.found) << ", mean effect " << t->planted.mean_effect_pct()
+                              << " %; median half-width " << t->median_half_width());
   }
   WARN("heavy tails: median half-width, Huber / mean = " << ratio);
   CHECK(kNominal.holds(huber.twin.rate(huber.twin.covered)));
@@ -305,11 +302,10 @@ TEST_CASE("the probe-adjusted interval covers as well and removes the wander's v
       s.model.probe_noise_sd = 0.001;
       const Tallies t = run_seeds(s.model, adjusted, ms::OrderKind::kRandom);
       const double twin_cov = t.twin.rate(t.twin.covered), planted_cov = t.planted.rate(t.planted.covered);
-      WARN(s.name << " (adjusted, " << ms::to_string(e) << ", " << kSeeds << " seeds): coverage twin "
-                  << twin_cov << ", planted " << planted_cov << "; A/A false verdicts "
-                  << t.twin.rate(t.twin.false_verdicts()) << "; planted found " << t.planted.rate(t.planted.found)
-                  << ", mean effect " << t.planted.mean_effect_pct() << " %; mean variance removed "
-                  << t.mean_variance_removed());
+      WARN(s.name << " (adjusted, " << ms::to_string(e) << ", " << kSeeds << " seeds): coverage twin " << twin_cov
+                  << ", planted " << planted_cov << "; A/A false verdicts " << t.twin.rate(t.twin.false_verdicts())
+                  << "; planted found " << t.planted.rate(t.planted.found) << ", mean effect "
+                  << t.planted.mean_effect_pct() << " %; mean variance removed " << t.mean_variance_removed());
       INFO(s.name << ", " << ms::to_string(e));
       CHECK(t.adjusted_used == 2 * kSeeds);
       // The probe sees the machine's slowness: the outlier rounds of a step or burst are explained away, so the

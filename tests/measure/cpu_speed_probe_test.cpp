@@ -54,7 +54,8 @@ TEST_CASE("a steady probe beside a spread serial loop: not the core's clock", "[
 TEST_CASE("a probe that moved less than the serial loop: part machine, part not", "[cpu_probe]") {
   // A 2-vCPU VM, README command 1: passes drifting 498 ... 632 ms, the probe 1.96 ... 2.09 ms.
   const std::vector<double> serial{511, 498, 531, 556, 533, 557, 555, 610, 632, 581};
-  const std::vector<double> probe{1.974e6, 1.956e6, 2.055e6, 2.088e6, 1.980e6, 2.084e6, 2.055e6, 2.054e6, 2.086e6, 2.086e6};
+  const std::vector<double> probe{1.974e6, 1.956e6, 2.055e6, 2.088e6, 1.980e6,
+                                  2.084e6, 2.055e6, 2.054e6, 2.086e6, 2.086e6};
   const nz::SpreadDiagnosis d = nz::diagnose_spread(serial, probe, 0.05);
   CHECK(d.cpu_varied);
   CHECK(d.correlation > 0.5);

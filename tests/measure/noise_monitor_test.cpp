@@ -26,8 +26,8 @@ nz::ProcSample sample(std::uint64_t user, std::uint64_t system, std::uint64_t id
   const std::string stat = "cpu  " + std::to_string(user) + " 0 " + std::to_string(system) + " " +
                            std::to_string(idle) + " 3 0 1 " + std::to_string(steal) +
                            " 0 0\ncpu0 1 2 3 4 5 6 7 8 0 0\nintr 12345\n";
-  const std::string self = "4242 (front steal) R 1 4242 4242 0 -1 4194304 100 0 0 0 " +
-                           std::to_string(self_utime) + " " + std::to_string(self_stime) + " 0 0 20 0 3 0 77 0 0";
+  const std::string self = "4242 (front steal) R 1 4242 4242 0 -1 4194304 100 0 0 0 " + std::to_string(self_utime) +
+                           " " + std::to_string(self_stime) + " 0 0 20 0 3 0 77 0 0";
   const std::string loadavg = std::to_string(load) + " 0.40 0.30 2/123 4567\n";
   return nz::parse_sample(stat, self, loadavg, wall_s);
 }
@@ -190,6 +190,6 @@ TEST_CASE("a /proc file whose process ends between open and read: nothing read, 
   CHECK_NOTHROW(text = nz::read_open_file(fd));
   CHECK(text.empty());
   ::close(fd);
-  CHECK(nz::read_proc_file(path).empty());      // the process is gone: nothing, no exception
+  CHECK(nz::read_proc_file(path).empty());  // the process is gone: nothing, no exception
   CHECK_FALSE(nz::read_proc_file("/proc/self/stat").empty());
 }

@@ -151,8 +151,8 @@ TEST_CASE("four rounds in one block: estimate, sd and the t interval with df = 3
   const ms::PairedResult r = ms::analyze_pairs(pairs_with({0.01, 0.03, 0.02, 0.06}), mean_settings());
   const double mean = 0.03;
   const double sd = std::sqrt(0.0014 / 3.0);  // n - 1 denominator
-  const double se = sd / 2.0;                  // sd / sqrt(4)
-  const double t3 = 3.1824;                    // t table, df = 3, p = .975
+  const double se = sd / 2.0;                 // sd / sqrt(4)
+  const double t3 = 3.1824;                   // t table, df = 3, p = .975
   INFO(ms::describe(r));
   CHECK(r.rounds == 4);
   CHECK(r.raw.valid);
@@ -277,8 +277,8 @@ TEST_CASE("blocks remove their offsets from the spread but not from the estimate
 namespace {
 
 // The probe covariate's shape over 16 rounds, spread over +-0.12.
-constexpr double kC[] = {0.10, -0.08, 0.03, -0.12, 0.06, -0.02, 0.12, -0.09,
-                         -0.05, 0.09, -0.11, 0.04, 0.07, -0.03, 0.01, -0.02};
+constexpr double kC[] = {0.10,  -0.08, 0.03,  -0.12, 0.06, -0.02, 0.12, -0.09,
+                         -0.05, 0.09,  -0.11, 0.04,  0.07, -0.03, 0.01, -0.02};
 
 double mean_of_kc() {
   double mean_c = 0;
@@ -307,8 +307,8 @@ std::vector<ms::RoundPair> probed_rounds(double c_offset) {
 
 TEST_CASE("the probe covariate narrows the interval and recovers the slope", "[paired_analysis]") {
   const ms::PairedResult r = ms::analyze_pairs(probed_rounds(0.0), mean_settings());
-  INFO(ms::describe(r) << "  raw sd " << r.raw.sd << "  adjusted sd " << r.adjusted.sd << "  slope "
-                       << r.probe_slope << "  variance removed " << r.variance_removed);
+  INFO(ms::describe(r) << "  raw sd " << r.raw.sd << "  adjusted sd " << r.adjusted.sd << "  slope " << r.probe_slope
+                       << "  variance removed " << r.variance_removed);
   REQUIRE(r.adjusted.valid);
   CHECK(r.uses_adjusted);
   CHECK(r.adjusted.df == 14.0);  // rounds - blocks - 1

@@ -57,13 +57,11 @@ TEST_CASE("the fixed order is the identity, the counterbalanced one reverses odd
   for (std::size_t round = 0; round < 10; ++round) {
     INFO("round " << round);
     CHECK(ms::round_order(4, kSeed, round, ms::OrderKind::kFixed) == identity);
-    CHECK(ms::round_order(4, kSeed, round, ms::OrderKind::kCounterbalanced) ==
-          (round % 2 == 1 ? reversed : identity));
+    CHECK(ms::round_order(4, kSeed, round, ms::OrderKind::kCounterbalanced) == (round % 2 == 1 ? reversed : identity));
   }
 }
 
-TEST_CASE("the random order is reproducible for (seed, round) and changes across rounds and seeds",
-          "[round_order]") {
+TEST_CASE("the random order is reproducible for (seed, round) and changes across rounds and seeds", "[round_order]") {
   std::set<std::vector<std::size_t>> seen;
   std::size_t same_as_other_seed = 0;
   for (std::size_t round = 0; round < 40; ++round) {
@@ -101,7 +99,8 @@ TEST_CASE("under the random order each arm takes each position about equally oft
   }
   double chi_orders = 0;
   const double expected_order = static_cast<double>(kRounds) / 6.0;
-  for (const auto& [order, c] : orders) chi_orders += std::pow(static_cast<double>(c) - expected_order, 2.0) / expected_order;
+  for (const auto& [order, c] : orders)
+    chi_orders += std::pow(static_cast<double>(c) - expected_order, 2.0) / expected_order;
   INFO("chi-square of arm by position " << chi_positions << " (df 4), of the six orders " << chi_orders << " (df 5)");
   CHECK(orders.size() == 6);
   CHECK(chi_positions < 25.0);
@@ -153,9 +152,9 @@ TEST_CASE("a fixed order under steady drift makes identical arms differ: the lat
   // against a run noise of 0.2 percent per arm. The bias is in every round, so either estimator sees it.
   for (ms::Estimator e : {ms::Estimator::kMean, ms::Estimator::kHuber}) {
     const AaUnderDrift fixed = aa_under_drift(ms::OrderKind::kFixed, 50, e);
-    INFO(ms::to_string(e) << ", fixed order: " << fixed.differs << " of " << fixed.seeds
-                          << " A/A comparisons differ, " << fixed.later_slower
-                          << " with the later arm slower, mean log-ratio " << fixed.mean_estimate);
+    INFO(ms::to_string(e) << ", fixed order: " << fixed.differs << " of " << fixed.seeds << " A/A comparisons differ, "
+                          << fixed.later_slower << " with the later arm slower, mean log-ratio "
+                          << fixed.mean_estimate);
     CHECK(fixed.differs == fixed.seeds);
     CHECK(fixed.later_slower == fixed.seeds);
     CHECK(fixed.mean_estimate > 0.0028);
@@ -169,8 +168,7 @@ TEST_CASE("the random order removes the drift's bias: identical arms differ at a
     const AaUnderDrift random = aa_under_drift(ms::OrderKind::kRandom, 200, e);
     const double rate = static_cast<double>(random.differs) / static_cast<double>(random.seeds);
     INFO(ms::to_string(e) << ", random order: " << random.differs << " of " << random.seeds
-                          << " A/A comparisons differ (rate " << rate << "), mean log-ratio "
-                          << random.mean_estimate);
+                          << " A/A comparisons differ (rate " << rate << "), mean log-ratio " << random.mean_estimate);
     CHECK(rate <= 0.08);
     CHECK(std::fabs(random.mean_estimate) < 0.0003);  // a tenth of the fixed order's bias
     // Counterbalancing cancels a linear drift over each pair of rounds.

@@ -84,15 +84,18 @@ TEST_CASE("a malformed trace is refused with the file and the line of its first 
     const fs::path file = dir.write("bad-" + std::to_string(++i) + ".txt", c.text);
     INFO(c.what);
     CHECK_THROWS_AS(fp::read_cost_trace(file), fp::TraceError);
-    CHECK_THROWS_WITH(fp::read_cost_trace(file), Catch::Contains(file.filename().string()) && Catch::Contains(c.message));
+    CHECK_THROWS_WITH(fp::read_cost_trace(file),
+                      Catch::Contains(file.filename().string()) && Catch::Contains(c.message));
   }
 }
 
 TEST_CASE("a trace that cannot be opened or written says which file", "[papers][trace]") {
-  CHECK_THROWS_WITH(fp::read_cost_trace("/nonexistent/trace.txt"), Catch::Contains("cannot open trace /nonexistent/trace.txt"));
+  CHECK_THROWS_WITH(fp::read_cost_trace("/nonexistent/trace.txt"),
+                    Catch::Contains("cannot open trace /nonexistent/trace.txt"));
   fp::CostTrace t;
   t.centres = {{0, 0, 0}};
   t.estimates = {1};
   t.cost_ns = {{1}};
-  CHECK_THROWS_WITH(fp::write_cost_trace(t, "/nonexistent/dir/trace.txt"), Catch::Contains("/nonexistent/dir/trace.txt"));
+  CHECK_THROWS_WITH(fp::write_cost_trace(t, "/nonexistent/dir/trace.txt"),
+                    Catch::Contains("/nonexistent/dir/trace.txt"));
 }

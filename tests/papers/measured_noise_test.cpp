@@ -39,7 +39,8 @@ const std::vector<double> kSteadySerial = {100, 101, 100}, kDriftingSerial = {10
 TEST_CASE("a quiet measurement keeps its verdict", "[papers][noise]") {
   const fp::MeasuredNoise noise({kQuiet, kSteadySerial, {}, {}, {}});
   CHECK(noise.warnings().empty());
-  const auto j = noise.judge(cell("stealing/Fenced", {90, 91, 89}, kQuiet), cell("queue-mutex", {100, 100, 100}, kQuiet));
+  const auto j =
+      noise.judge(cell("stealing/Fenced", {90, 91, 89}, kQuiet), cell("queue-mutex", {100, 100, 100}, kQuiet));
   CHECK(j.reliable());
   CHECK(j.c.decision == frontsteal::measure::Decision::kFaster);
   CHECK(j.text().find("unreliable") == std::string::npos);
@@ -52,7 +53,8 @@ TEST_CASE("a quiet measurement keeps its verdict", "[papers][noise]") {
 TEST_CASE("others on the machine during the measurement make every verdict unreliable", "[papers][noise]") {
   const fp::MeasuredNoise noise({kBusy, kSteadySerial, {}, {}, {}});
   REQUIRE(noise.warnings().size() == 1);
-  const auto j = noise.judge(cell("stealing/Fenced", {90, 91, 89}, kQuiet), cell("queue-mutex", {100, 100, 100}, kQuiet));
+  const auto j =
+      noise.judge(cell("stealing/Fenced", {90, 91, 89}, kQuiet), cell("queue-mutex", {100, 100, 100}, kQuiet));
   CHECK_FALSE(j.reliable());
   CHECK(j.text().find("unreliable (faster") != std::string::npos);
   CHECK(j.json()["verdict"] == "unreliable");
@@ -65,7 +67,8 @@ TEST_CASE("others on the machine during the measurement make every verdict unrel
 
 TEST_CASE("a busy cell makes its comparisons unreliable, and only those", "[papers][noise]") {
   const fp::MeasuredNoise noise({kQuiet, kSteadySerial, {}, {}, {}});
-  const auto busy = noise.judge(cell("stealing/Fenced", {90, 91, 89}, kBusy), cell("queue-mutex", {100, 100, 100}, kQuiet));
+  const auto busy =
+      noise.judge(cell("stealing/Fenced", {90, 91, 89}, kBusy), cell("queue-mutex", {100, 100, 100}, kQuiet));
   CHECK_FALSE(busy.reliable());
   CHECK(busy.unreliable_because.find("stealing/Fenced P=2") != std::string::npos);
   const auto quiet = noise.judge(cell("chase-lev", {90, 91, 89}, kQuiet), cell("queue-mutex", {100, 100, 100}, kQuiet));

@@ -237,11 +237,9 @@ TEST_CASE("wake-up: worker w starts its frame w x wake_skew_ns late") {
   const auto rr = frontsteal::sched::round_robin_assignment(4, 2);
   fp::Overheads o = free_overheads();
   o.wake_skew_ns = 3;
-  CHECK(fp::simulate(t, o, {.model = fp::Model::static_list, .workers = 2, .assignment = &rr}).path_ns ==
-        Approx(23));
+  CHECK(fp::simulate(t, o, {.model = fp::Model::static_list, .workers = 2, .assignment = &rr}).path_ns == Approx(23));
   o.wake_skew_ns = 0;  // negative control: without the skew the frame is 20
-  CHECK(fp::simulate(t, o, {.model = fp::Model::static_list, .workers = 2, .assignment = &rr}).path_ns ==
-        Approx(20));
+  CHECK(fp::simulate(t, o, {.model = fp::Model::static_list, .workers = 2, .assignment = &rr}).path_ns == Approx(20));
 }
 
 TEST_CASE("queue: a waiter sleeps and gets the lock lock_wake_ns after the holder's release") {

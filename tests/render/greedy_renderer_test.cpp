@@ -51,7 +51,8 @@ std::vector<char> cpu_coverage(const ts::Model& m, const ts::Camera& tessellated
             const glm::dvec3& b = p[(k + 1) % 3];
             w[k] = ((b.x - a.x) * (cy - a.y) - (b.y - a.y) * (cx - a.x)) * (area > 0 ? 1 : -1);
           }
-          if (w[0] >= 0 && w[1] >= 0 && w[2] >= 0) mask[static_cast<std::size_t>(view.height - 1 - y) * view.width + x] = 1;
+          if (w[0] >= 0 && w[1] >= 0 && w[2] >= 0)
+            mask[static_cast<std::size_t>(view.height - 1 - y) * view.width + x] = 1;
         }
       }
     }
@@ -109,7 +110,8 @@ TEST_CASE("greedy rendering with the null renderer: statistics add up") {
   CHECK(st.mean_lag >= 0);
   CHECK(st.max_lag < 40);
   CHECK(st.quality.empty());  // no images without a renderer
-  for (std::size_t u = 1; u < st.per_update.size(); ++u) CHECK(st.per_update[u].at_seconds >= st.per_update[u - 1].at_seconds);
+  for (std::size_t u = 1; u < st.per_update.size(); ++u)
+    CHECK(st.per_update[u].at_seconds >= st.per_update[u - 1].at_seconds);
 }
 
 TEST_CASE("greedy rendering reports the tessellation audit, and counts a planted defect") {

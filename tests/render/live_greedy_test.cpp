@@ -58,7 +58,8 @@ TEST_CASE("live greedy rendering: synchronized updates show their own view") {
     rd::ViewCamera earlier = view;
     earlier.zoom(-1);
     earlier.orbit(-15, 0);
-    CHECK(rd::coverage_iou(image, rd::render_synchronized(m, earlier.camera(160, 96), {}), rd::TriangleRenderer::kBackground) < 0.9);
+    CHECK(rd::coverage_iou(image, rd::render_synchronized(m, earlier.camera(160, 96), {}),
+                           rd::TriangleRenderer::kBackground) < 0.9);
     CHECK(live.counters().tessellation_frames >= 4);
     CHECK(live.counters().inconsistencies == 0);
     live.stop_drawing();
@@ -86,7 +87,8 @@ TEST_CASE("live greedy rendering: lagging updates catch up when the camera stops
       }
       CHECK(rec.max_lag == 0);
       // Components are published inside the frame, the counters after it: wait for them too (bounded).
-      for (int k = 0; k < 20000 && live.counters().scheduler != name; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      for (int k = 0; k < 20000 && live.counters().scheduler != name; ++k)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
       CHECK(live.counters().scheduler == name);
     }
     live.stop_drawing();

@@ -52,18 +52,28 @@ int main(int argc, char** argv) {
     const auto eq = arg.find('=');
     if (eq == std::string::npos) bad("expected key=value, got '" + arg + "'");
     const std::string key = arg.substr(0, eq), v = arg.substr(eq + 1);
-    if (key == "eye") cam.eye = vec3(key, v);
-    else if (key == "target") cam.target = vec3(key, v);
-    else if (key == "up") cam.up = vec3(key, v);
-    else if (key == "fovy") cam.fovy_radians = std::stod(v);
-    else if (key == "near") cam.near_plane = std::stod(v);
-    else if (key == "far") cam.far_plane = std::stod(v);
+    if (key == "eye")
+      cam.eye = vec3(key, v);
+    else if (key == "target")
+      cam.target = vec3(key, v);
+    else if (key == "up")
+      cam.up = vec3(key, v);
+    else if (key == "fovy")
+      cam.fovy_radians = std::stod(v);
+    else if (key == "near")
+      cam.near_plane = std::stod(v);
+    else if (key == "far")
+      cam.far_plane = std::stod(v);
     else if (key == "size") {
       if (std::sscanf(v.c_str(), "%dx%d", &cam.width, &cam.height) != 2) bad("size expects WxH");
-    } else if (key == "tolerance") settings.pixel_tolerance = std::stod(v);
-    else if (key == "rotate") rotate = std::stod(v);
-    else if (key == "out") out = v;
-    else bad("unknown key '" + key + "'");
+    } else if (key == "tolerance")
+      settings.pixel_tolerance = std::stod(v);
+    else if (key == "rotate")
+      rotate = std::stod(v);
+    else if (key == "out")
+      out = v;
+    else
+      bad("unknown key '" + key + "'");
   }
   if (rotate != 0) {
     const double a = rotate * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
@@ -89,7 +99,7 @@ int main(int argc, char** argv) {
   const double iou = rd::coverage_iou(shot, reference, rd::TriangleRenderer::kBackground);
   const std::size_t covered = rd::covered_pixels(reference, rd::TriangleRenderer::kBackground);
   std::cout << "view_reference: IoU " << iou << " (minimum " << min_iou << "), reference covers " << covered << " of "
-            << cam.width * cam.height << " pixels" << (rotate != 0 ? ", eye rotated " + std::to_string(rotate) + " deg" : "")
-            << '\n';
+            << cam.width * cam.height << " pixels"
+            << (rotate != 0 ? ", eye rotated " + std::to_string(rotate) + " deg" : "") << '\n';
   return iou >= min_iou && covered > 0 ? 0 : 1;
 }

@@ -118,7 +118,8 @@ TEST_CASE("the static_steal child runs every surface exactly once with the seria
   }
 }
 
-TEST_CASE("the parent's audit catches a dropped and a duplicated item in the child", "[llvm-openmp][negative-control]") {
+TEST_CASE("the parent's audit catches a dropped and a duplicated item in the child",
+          "[llvm-openmp][negative-control]") {
   if (!sc::llvm_openmp_unavailable_reason().empty()) return;
   fs::ItemId n = 0;
   const std::vector<std::uint64_t> reference = serial_triangles(n);

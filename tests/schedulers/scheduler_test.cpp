@@ -92,8 +92,8 @@ TEST_CASE("oversubscribed schedulers really run P threads", "[schedulers]") {
   // that silently ran fewer threads (e.g. a runtime capped at the core count) would show fewer ids.
   for (const auto& info : sc::scheduler_registry()) {
     if (!runs_here(info) || info.name.rfind("round-robin", 0) != 0 && info.name != "queue-mutex" &&
-                                info.name != "moodycamel-queue" &&
-                                info.name != "chase-lev" && info.name != "tbb-affinity" && info.name != "openmp-dynamic") {
+                                info.name != "moodycamel-queue" && info.name != "chase-lev" &&
+                                info.name != "tbb-affinity" && info.name != "openmp-dynamic") {
       continue;
     }
     CAPTURE(info.name);

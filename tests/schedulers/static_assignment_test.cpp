@@ -46,9 +46,8 @@ TEST_CASE("annealing balances estimated cost and separates nearby primitives", "
     sc::AnnealingReport r;
     const sc::Assignment a = sc::annealed_assignment(2000, p, h, {.seed = 3}, &r);
     REQUIRE_NOTHROW(sc::require_partition(a, p, 2000));
-    INFO("imbalance " << r.initial_imbalance << " -> " << r.final_imbalance << ", edge cost "
-                      << r.initial_edge_cost << " -> " << r.final_edge_cost << ", accepted " << r.accepted << "/"
-                      << r.proposals);
+    INFO("imbalance " << r.initial_imbalance << " -> " << r.final_imbalance << ", edge cost " << r.initial_edge_cost
+                      << " -> " << r.final_edge_cost << ", accepted " << r.accepted << "/" << r.proposals);
     REQUIRE(r.final_imbalance < 1.02);
     REQUIRE(r.final_imbalance <= r.initial_imbalance);
     REQUIRE(r.final_edge_cost < r.initial_edge_cost);

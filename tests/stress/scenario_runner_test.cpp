@@ -19,8 +19,8 @@ namespace {
 constexpr int kRunsPerScenario = 300;
 }
 
-TEMPLATE_TEST_CASE("every model-checking scenario holds on real threads", "[stress][scenario]", fs::SeqCst,
-                   fs::Fenced, fs::Minimal, fs::Paper) {
+TEMPLATE_TEST_CASE("every model-checking scenario holds on real threads", "[stress][scenario]", fs::SeqCst, fs::Fenced,
+                   fs::Minimal, fs::Paper) {
   for (const auto& spec : scenarios()) {
     fs::ExecutionAudit total;
     for (int run = 0; run < kRunsPerScenario; ++run) {

@@ -20,7 +20,10 @@ void survive(double seconds, Busy busy, Progress progress) {
   fs::WatchdogOptions options;
   options.stall_seconds = 0.2;
   const fs::Watchdog dog(
-      "stress_watchdog_test", [&] { return fs::WatchdogSample{busy(), progress()}; },
+      "stress_watchdog_test",
+      [&] {
+        return fs::WatchdogSample{busy(), progress()};
+      },
       [](std::FILE* out) { std::fprintf(out, "  (test probe)\n"); }, options);
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
 }
@@ -28,7 +31,8 @@ void survive(double seconds, Busy busy, Progress progress) {
 }  // namespace
 
 TEST_CASE("a watchdog never fires while the watched state is idle", "[core][watchdog]") {
-  survive(0.6, [] { return false; }, [] { return std::uint64_t{0}; });  // no frame in flight: nothing expected
+  survive(
+      0.6, [] { return false; }, [] { return std::uint64_t{0}; });  // no frame in flight: nothing expected
   SUCCEED("idle for 3x the stall bound without firing");
 }
 
@@ -41,7 +45,8 @@ TEST_CASE("a watchdog never fires while busy work keeps progressing", "[core][wa
       std::this_thread::sleep_for(std::chrono::milliseconds(20));  // slow, but well inside the bound
     }
   });
-  survive(0.6, [] { return true; }, [&] { return counter.load(std::memory_order::relaxed); });
+  survive(
+      0.6, [] { return true; }, [&] { return counter.load(std::memory_order::relaxed); });
   stop.store(true, std::memory_order::relaxed);
   worker.join();
   SUCCEED("busy for 3x the stall bound, progressing, without firing");

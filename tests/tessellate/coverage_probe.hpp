@@ -54,12 +54,15 @@ inline CoverageReport probe_coverage(const std::vector<std::array<glm::dvec2, 3>
     int winding = 0;
     for (const auto& ring : rings) {
       winding += winding_number(ring, p);
-      for (std::size_t e = 0; e < ring.size() && !near; ++e) near = distance_to_segment(p, ring[e], ring[(e + 1) % ring.size()]) < margin;
+      for (std::size_t e = 0; e < ring.size() && !near; ++e)
+        near = distance_to_segment(p, ring[e], ring[(e + 1) % ring.size()]) < margin;
     }
     int covered = 0;
     for (const auto& t : triangles) {
       for (int e = 0; e < 3 && !near; ++e) near = distance_to_segment(p, t[e], t[(e + 1) % 3]) < margin;
-      const auto side = [&](glm::dvec2 a, glm::dvec2 b) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
+      const auto side = [&](glm::dvec2 a, glm::dvec2 b) {
+        return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+      };
       const double s0 = side(t[0], t[1]), s1 = side(t[1], t[2]), s2 = side(t[2], t[0]);
       if ((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0)) ++covered;  // drawn either way round
     }

@@ -18,8 +18,12 @@ namespace {
 
 ts::PathSceneOptions options(ts::PlantedDefect defect = ts::PlantedDefect::none, int max_steps = 256,
                              const char* scene = "plant:150") {
-  ts::PathSceneOptions o{.scene = scene, .data_dir = FRONTSTEAL_DATA_DIR,
-                         .path = ts::CameraPathKind::orbit_then_zoom, .frames = 4, .width = 640, .height = 360,
+  ts::PathSceneOptions o{.scene = scene,
+                         .data_dir = FRONTSTEAL_DATA_DIR,
+                         .path = ts::CameraPathKind::orbit_then_zoom,
+                         .frames = 4,
+                         .width = 640,
+                         .height = 360,
                          .settings = {}};
   o.settings.pixel_tolerance = 1;
   o.settings.planted_defect = defect;

@@ -36,7 +36,8 @@ Difference compare(const ts::TriangleBuffers& a, const ts::TriangleBuffers& b) {
 
 }  // namespace
 
-TEST_CASE("float grid equals the double grid within its error bound, both kernel builds, every degree", "[float-grid]") {
+TEST_CASE("float grid equals the double grid within its error bound, both kernel builds, every degree",
+          "[float-grid]") {
   std::mt19937_64 rng(42);
   ts::TriangleBuffers exact, fast;
   std::vector<ts::BernsteinTable> basis;
@@ -78,7 +79,8 @@ TEST_CASE("negative control: a grid a tenth of a step off exceeds the bound", "[
   CHECK(d.position > 10 * ts::float_row_error_bound(patch));
 }
 
-TEST_CASE("plan_surface keeps double precision where the float bound is not well inside the tolerance", "[float-grid]") {
+TEST_CASE("plan_surface keeps double precision where the float bound is not well inside the tolerance",
+          "[float-grid]") {
   std::mt19937_64 rng(3);
   ts::BezierPatch near = random_patch(rng, 3, 3, false);
   ts::BezierPatch far = near, heavy = near;

@@ -67,7 +67,9 @@ std::string first_lines(const std::string& text, std::size_t keep) {
   while (keep-- > 0) pos = text.find('\n', pos) + 1;
   return text.substr(0, pos);
 }
-std::size_t line_count(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
+std::size_t line_count(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
 
 struct Outcome {
   bool failed = false;
@@ -113,7 +115,8 @@ TEST_CASE("hostile CAD files: crashes, hangs and memory are reported, nothing pa
   const std::string step = gunzip(kStepGz);
   REQUIRE(step.find("END-ISO-10303-21") != std::string::npos);
   const std::string brep = read_all(kBrep), iges = read_all(kIges);
-  ts::IsolationLimits quick;  // for the files that hang; the others run under the default 30 s, so load cannot fail them
+  ts::IsolationLimits
+      quick;  // for the files that hang; the others run under the default 30 s, so load cannot fail them
   quick.time_limit_s = 3;
 
   SECTION("negative control: the unmodified files import, with no warning") {

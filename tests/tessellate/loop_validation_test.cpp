@@ -52,17 +52,20 @@ TEST_CASE("negative controls: each defect is found and named", "[loops]") {
   // A bow tie.
   CHECK(kind_of({{{0, 0}, {1, 1}, {1, 0}, {0, 1}}}) == Kind::self_intersection);
   // Two holes that cross.
-  CHECK(kind_of({outer, square({0.2, 0.2}, {0.5, 0.5}, false), square({0.4, 0.4}, {0.7, 0.7}, false)}) == Kind::loops_cross);
+  CHECK(kind_of({outer, square({0.2, 0.2}, {0.5, 0.5}, false), square({0.4, 0.4}, {0.7, 0.7}, false)}) ==
+        Kind::loops_cross);
   // A hole that crosses the outer loop.
   CHECK(kind_of({outer, square({0.8, 0.2}, {1.2, 0.5}, false)}) == Kind::loops_cross);
   // Two holes touching at a corner, and a hole touching the outer loop along an edge.
-  CHECK(kind_of({outer, square({0.2, 0.2}, {0.4, 0.4}, false), square({0.4, 0.4}, {0.6, 0.6}, false)}) == Kind::loops_cross);
+  CHECK(kind_of({outer, square({0.2, 0.2}, {0.4, 0.4}, false), square({0.4, 0.4}, {0.6, 0.6}, false)}) ==
+        Kind::loops_cross);
   CHECK(kind_of({outer, square({0.2, 0.0}, {0.4, 0.4}, false)}) == Kind::loops_cross);
   // A spike: the outer loop runs in to (0.5, 0.5) and straight back.
   CHECK(kind_of({{{0, 0}, {0.5, 0}, {0.5, 0.5}, {0.5, 0}, {1, 0}, {1, 1}, {0, 1}}}) == Kind::retraced_edge);
   // A hole outside the outer loop, and a hole inside a hole.
   CHECK(kind_of({square({0, 0}, {0.5, 0.5}, true), square({0.6, 0.6}, {0.7, 0.7}, false)}) == Kind::hole_outside);
-  CHECK(kind_of({outer, square({0.2, 0.2}, {0.8, 0.8}, false), square({0.4, 0.4}, {0.5, 0.5}, false)}) == Kind::nested_hole);
+  CHECK(kind_of({outer, square({0.2, 0.2}, {0.8, 0.8}, false), square({0.4, 0.4}, {0.5, 0.5}, false)}) ==
+        Kind::nested_hole);
   // The 10^6-point circle with its top point pulled down across the bottom.
   Ring big = circle({0.5, 0.5}, 0.49, 1'000'000, true);
   big[250'000] = {0.5, 0.001};  // from the top (angle π/2) down past the bottom (v = 0.01)

@@ -167,8 +167,9 @@ TEST_CASE("holes that cross, touch, nest or lie outside are refused with both lo
     return s.str();
   };
   // Crosses the first hole (the square 0.4..0.6 with a bulge to 0.7).
-  CHECK_THROWS_WITH(parse(with_second_hole(pts({{0.5, 0.5}, {0.5, 0.8}, {0.8, 0.8}, {0.8, 0.5}, {0.5, 0.5}}))),
-                    Catch::Contains("plate.fsm:31: loops cross or touch each other") && Catch::Contains("lines 19 and 31"));
+  CHECK_THROWS_WITH(
+      parse(with_second_hole(pts({{0.5, 0.5}, {0.5, 0.8}, {0.8, 0.8}, {0.8, 0.5}, {0.5, 0.5}}))),
+      Catch::Contains("plate.fsm:31: loops cross or touch each other") && Catch::Contains("lines 19 and 31"));
   // Inside the first hole.
   CHECK_THROWS_WITH(parse(with_second_hole(pts({{0.45, 0.45}, {0.45, 0.5}, {0.5, 0.5}, {0.5, 0.45}, {0.45, 0.45}}))),
                     Catch::Contains("plate.fsm:31: hole lies inside another hole"));
@@ -176,7 +177,9 @@ TEST_CASE("holes that cross, touch, nest or lie outside are refused with both lo
   CHECK_THROWS_WITH(parse(with_second_hole(pts({{0.1, 0.0}, {0.1, 0.2}, {0.2, 0.2}, {0.2, 0.0}, {0.1, 0.0}}))),
                     Catch::Contains("plate.fsm:31: loops cross or touch each other"));
   // Apart from everything: accepted.
-  CHECK(parse(with_second_hole(pts({{0.1, 0.1}, {0.1, 0.2}, {0.2, 0.2}, {0.2, 0.1}, {0.1, 0.1}}))).surfaces[0].loops.size() == 3);
+  CHECK(parse(with_second_hole(pts({{0.1, 0.1}, {0.1, 0.2}, {0.2, 0.2}, {0.2, 0.1}, {0.1, 0.1}})))
+            .surfaces[0]
+            .loops.size() == 3);
 }
 
 TEST_CASE("a missing file is a clear error", "[tessellate][format]") {

@@ -76,17 +76,20 @@ struct TempDir {
 
 // ∫∫ over a surface's trimmed region of f(S(u,v)) du dv, by Green's theorem: ∮ F dv over the loops, with
 // F(u, v) = ∫_0^u f(s, v) ds. Both integrals by 8-point Gauss–Legendre; loops as sampled polygons.
-constexpr std::array<double, 8> kGaussX = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355, 0.4082826787521751,
-                                           0.5917173212478249, 0.7627662049581645, 0.8983332387068134, 0.9801449282487681};
-constexpr std::array<double, 8> kGaussW = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436, 0.1813418916891810,
-                                           0.1813418916891810, 0.1568533229389436, 0.1111905172266872, 0.0506142681451881};
+constexpr std::array<double, 8> kGaussX = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
+                                           0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
+                                           0.8983332387068134, 0.9801449282487681};
+constexpr std::array<double, 8> kGaussW = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436,
+                                           0.1813418916891810, 0.1813418916891810, 0.1568533229389436,
+                                           0.1111905172266872, 0.0506142681451881};
 
 using Integrand = std::function<double(const ts::SurfacePoint&)>;
 
 double region_integral(const ts::Surface& s, const Integrand& f) {
   const auto F = [&](glm::dvec2 p) {
     double sum = 0;
-    for (std::size_t k = 0; k < kGaussX.size(); ++k) sum += kGaussW[k] * f(ts::evaluate(s.patch, p.x * kGaussX[k], p.y));
+    for (std::size_t k = 0; k < kGaussX.size(); ++k)
+      sum += kGaussW[k] * f(ts::evaluate(s.patch, p.x * kGaussX[k], p.y));
     return p.x * sum;
   };
   std::vector<std::vector<glm::dvec2>> polys;
@@ -113,7 +116,8 @@ double area(const ts::Surface& s) {
 }
 // (1/3) ∫∫ S · (S_u × S_v): summed over a closed surface with outward normals, the enclosed volume.
 double volume_part(const ts::Surface& s) {
-  return region_integral(s, [](const ts::SurfacePoint& p) { return glm::dot(p.position, glm::cross(p.du, p.dv)) / 3.0; });
+  return region_integral(s,
+                         [](const ts::SurfacePoint& p) { return glm::dot(p.position, glm::cross(p.du, p.dv)) / 3.0; });
 }
 
 int face_of(const ts::Surface& s) {
@@ -359,8 +363,9 @@ TEST_CASE("occt import: real CAD files from Debian packages", "[occt]") {
     ++imported;
   }
   if (imported == 0) {
-    WARN("no real CAD file found: run ./bootstrap.sh (Debian packages occt-misc, "
-         "calculix-cgx-examples, gmsh-doc)");
+    WARN(
+        "no real CAD file found: run ./bootstrap.sh (Debian packages occt-misc, "
+        "calculix-cgx-examples, gmsh-doc)");
     return;
   }
 }
@@ -371,7 +376,8 @@ TEST_CASE("occt import: bad input throws a clear error", "[occt]") {
   SECTION("unknown extension") {
     const std::string path = dir.file("part.obj");
     std::ofstream(path) << "v 0 0 0\n";
-    REQUIRE_THROWS_WITH(ts::import_cad_file(path, model), Contains("unknown CAD file extension '.obj'") && Contains(path));
+    REQUIRE_THROWS_WITH(ts::import_cad_file(path, model),
+                        Contains("unknown CAD file extension '.obj'") && Contains(path));
   }
   SECTION("missing file") {
     const std::string path = dir.file("missing.step");

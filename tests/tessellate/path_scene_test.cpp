@@ -16,8 +16,13 @@ namespace ts = frontsteal::tess;
 
 TEST_CASE("path scene: the views of the path asked for, and tessellate() on them") {
   for (const ts::CameraPathKind kind : {ts::CameraPathKind::orbit_then_zoom, ts::CameraPathKind::dense_zoom}) {
-    ts::PathSceneOptions o{.scene = "plant:120", .data_dir = FRONTSTEAL_DATA_DIR, .path = kind, .frames = 5,
-                           .width = 640, .height = 360, .settings = {}};
+    ts::PathSceneOptions o{.scene = "plant:120",
+                           .data_dir = FRONTSTEAL_DATA_DIR,
+                           .path = kind,
+                           .frames = 5,
+                           .width = 640,
+                           .height = 360,
+                           .settings = {}};
     o.settings.pixel_tolerance = 2;
     ts::PathScene s = ts::make_path_scene(o);
     REQUIRE(s.frames() == 5);

@@ -75,7 +75,8 @@ Outcome triangulate_and_check(const Piece& piece, ts::BridgeCopy copy, std::mt19
   const auto position = [&](std::uint32_t id) { return piece.positions[id]; };
   Outcome o{audit.check(piece.outer, piece.holes, tris, position, 1e-14), {}, tris.size() / 3};
   std::vector<std::array<glm::dvec2, 3>> corners;
-  for (std::size_t t = 0; t < tris.size(); t += 3) corners.push_back({position(tris[t]), position(tris[t + 1]), position(tris[t + 2])});
+  for (std::size_t t = 0; t < tris.size(); t += 3)
+    corners.push_back({position(tris[t]), position(tris[t + 1]), position(tris[t + 2])});
   std::vector<std::vector<glm::dvec2>> rings;
   const auto plain = [](const ts::PolygonRing& r) {
     std::vector<glm::dvec2> p;
@@ -109,7 +110,8 @@ TEST_CASE("a cell with 1 to 8 holes is tiled exactly: audit and independent prob
   }
 }
 
-TEST_CASE("holes touching at a vertex: outside the triangulator's contract, never passed off as exact", "[triangulation]") {
+TEST_CASE("holes touching at a vertex: outside the triangulator's contract, never passed off as exact",
+          "[triangulation]") {
   // Loops that touch are rejected when a model is loaded (model_format.cpp); the tracer never makes such a
   // piece. Should one reach the triangulator anyway, the result may be wrong — the audit must then say so.
   std::mt19937_64 rng(5);
@@ -121,11 +123,13 @@ TEST_CASE("holes touching at a vertex: outside the triangulator's contract, neve
   piece.holes.push_back(ring_of(piece, {{0.3, 0.5}, {0.2, 0.4}, {0.1, 0.6}}));
   piece.holes.push_back(ring_of(piece, {{0.8, 0.8}, {0.9, 0.7}, {0.9, 0.9}}));
   const Outcome o = triangulate_and_check(piece, ts::BridgeCopy::sector, rng);
-  INFO(o.triangles << " triangles, " << o.coverage.mismatches << " probe mismatches, audit: " << ts::to_string(o.verdict));
+  INFO(o.triangles << " triangles, " << o.coverage.mismatches
+                   << " probe mismatches, audit: " << ts::to_string(o.verdict));
   CHECK((o.coverage.mismatches == 0) == (o.verdict == ts::TilingVerdict::exact));
 }
 
-TEST_CASE("negative controls: the wave-1 bridge and a dropped ear are caught by the audit and the probes", "[triangulation]") {
+TEST_CASE("negative controls: the wave-1 bridge and a dropped ear are caught by the audit and the probes",
+          "[triangulation]") {
   std::mt19937_64 rng(20261123);
   int first_copy_trials = 0, first_copy_caught = 0, first_copy_probed = 0;
   for (int trial = 0; trial < 400; ++trial) {
@@ -141,8 +145,8 @@ TEST_CASE("negative controls: the wave-1 bridge and a dropped ear are caught by 
     INFO("trial " << trial);
     CHECK(dropped.verdict == ts::TilingVerdict::boundary_mismatch);
   }
-  INFO(first_copy_trials << " trials where the wave-1 bridge went wrong, " << first_copy_caught << " caught by the audit, "
-                         << first_copy_probed << " by the probes");
+  INFO(first_copy_trials << " trials where the wave-1 bridge went wrong, " << first_copy_caught
+                         << " caught by the audit, " << first_copy_probed << " by the probes");
   CHECK(first_copy_trials > 10);  // the seed is fixed: this is a property of the data, not of timing
   CHECK(first_copy_caught == first_copy_trials);
 }

@@ -17,7 +17,8 @@ TEST_CASE("the paper's model sizes are generated exactly, deterministically", "[
     const ts::Model m = ts::generate_plant({n, 3});
     CHECK(m.surfaces.size() == static_cast<std::size_t>(n));
   }
-  const ts::Model a = ts::generate_plant({1201, 11}), b = ts::generate_plant({1201, 11}), c = ts::generate_plant({1201, 12});
+  const ts::Model a = ts::generate_plant({1201, 11}), b = ts::generate_plant({1201, 11}),
+                  c = ts::generate_plant({1201, 12});
   std::ostringstream wa, wb, wc;
   ts::write_model(wa, a);
   ts::write_model(wb, b);
@@ -47,7 +48,8 @@ TEST_CASE("a generated plant passes the strict parser and has trimmed surfaces, 
     if (!s.solid) continue;
     ts::tessellate_untrimmed(s.patch, {12, 12}, tri, basis);
     for (std::size_t t = 0; t < tri.indices.size(); t += 3) {
-      const glm::dvec3 a = tri.positions[tri.indices[t]], b = tri.positions[tri.indices[t + 1]], c = tri.positions[tri.indices[t + 2]];
+      const glm::dvec3 a = tri.positions[tri.indices[t]], b = tri.positions[tri.indices[t + 1]],
+                       c = tri.positions[tri.indices[t + 2]];
       volume[s.component] += glm::dot(a, glm::cross(b, c)) / 6.0;
     }
   }

@@ -36,8 +36,9 @@ Worst worst_deviation(const ts::BezierPatch& p, ts::StepSizes steps, std::mt1993
     const int i = std::min(static_cast<int>(u * steps.n_u), steps.n_u - 1);
     const int j = std::min(static_cast<int>(v * steps.n_v), steps.n_v - 1);
     const double a = u * steps.n_u - i, b = v * steps.n_v - j;
-    const glm::dvec3 linear = a >= b ? vertex(i, j) + a * (vertex(i + 1, j) - vertex(i, j)) + b * (vertex(i + 1, j + 1) - vertex(i + 1, j))
-                                     : vertex(i, j) + b * (vertex(i, j + 1) - vertex(i, j)) + a * (vertex(i + 1, j + 1) - vertex(i, j + 1));
+    const glm::dvec3 linear =
+        a >= b ? vertex(i, j) + a * (vertex(i + 1, j) - vertex(i, j)) + b * (vertex(i + 1, j + 1) - vertex(i + 1, j))
+               : vertex(i, j) + b * (vertex(i, j + 1) - vertex(i, j)) + a * (vertex(i + 1, j + 1) - vertex(i, j + 1));
     const double d = glm::length(ts::evaluate(p, u, v).position - linear);
     if (d > w.deviation) w = {d, u, v};
   }
@@ -95,7 +96,8 @@ TEST_CASE("the rational quarter cylinder stays within the tolerance", "[tessella
   }
 }
 
-TEST_CASE("negative control: too few steps break the tolerance on a patch where the bound is tight", "[tessellate][steps][negative]") {
+TEST_CASE("negative control: too few steps break the tolerance on a patch where the bound is tight",
+          "[tessellate][steps][negative]") {
   const ts::BezierPatch p = parabolic_cylinder();
   std::mt19937_64 rng(3);
   const double eps = 0.001;

@@ -82,7 +82,8 @@ PathAudit audit_path(const std::string& scene, const std::vector<int>& frames, c
       a.tiling += r.tiling_violations;
       a.area += r.area_mismatches;
       a.trace += r.trace_failures;
-      if (r.inconsistencies() > 0 && a.surfaces_flagged++ == 0) a.first = "frame " + std::to_string(f) + ": " + s.surface->name;
+      if (r.inconsistencies() > 0 && a.surfaces_flagged++ == 0)
+        a.first = "frame " + std::to_string(f) + ": " + s.surface->name;
       if (r.culled != ts::Culled::no || !s.trimmed() || trimmed++ % probe_every != 0) continue;
       const ts::SurfacePlan plan = ts::plan_surface(s, cam, frustum, settings);
       const CoverageReport c = probe_surface(s, plan, settings, out, rng, 200);
@@ -122,7 +123,8 @@ TEST_CASE("plant:15906, every frame of the camera path, at 1 px and 0.25 px", "[
     ts::TessellationSettings settings;
     settings.pixel_tolerance = px;
     const PathAudit a = audit_path("plant:15906", all_frames(), settings, 10);
-    INFO(px << " px: first flagged: " << a.first << "; tiling " << a.tiling << ", area " << a.area << ", trace " << a.trace);
+    INFO(px << " px: first flagged: " << a.first << "; tiling " << a.tiling << ", area " << a.area << ", trace "
+            << a.trace);
     CHECK(a.surfaces_flagged == 0);
     CHECK(a.probe_mismatches == 0);
   }
@@ -144,7 +146,8 @@ TEST_CASE("negative controls on the default scene: the wave-1 bridge and a dropp
   CHECK(dropped.area > 0);
 }
 
-TEST_CASE("plates with 1 to 8 holes per grid cell: audit clean, probes agree, planted defects caught", "[surface-audit]") {
+TEST_CASE("plates with 1 to 8 holes per grid cell: audit clean, probes agree, planted defects caught",
+          "[surface-audit]") {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   ts::TessellationScratch scratch;
@@ -187,9 +190,9 @@ TEST_CASE("plates with 1 to 8 holes per grid cell: audit clean, probes agree, pl
     const ts::SurfacePlan plan = ts::plan_surface(prepared, cam, frustum, settings);
     const ts::SurfaceResult r = ts::tessellate_trimmed(prepared, plan, settings, scratch, tri);
     const CoverageReport c = probe_surface(prepared, plan, settings, tri, rng, 300);
-    INFO("trial " << trial << ": " << placed.size() << " holes on " << r.steps.n_u << "x" << r.steps.n_v << " cells; tiling "
-                  << r.tiling_violations << ", area " << r.triangle_area << " vs " << r.trimmed_area << "; probes "
-                  << c.mismatches << "/" << c.probes);
+    INFO("trial " << trial << ": " << placed.size() << " holes on " << r.steps.n_u << "x" << r.steps.n_v
+                  << " cells; tiling " << r.tiling_violations << ", area " << r.triangle_area << " vs "
+                  << r.trimmed_area << "; probes " << c.mismatches << "/" << c.probes);
     CHECK(r.inconsistencies() == 0);
     CHECK(c.mismatches == 0);
     CHECK(c.probes > 200);

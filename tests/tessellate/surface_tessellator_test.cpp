@@ -106,7 +106,8 @@ TEST_CASE("screen-space deviation stays within the pixel tolerance, trimmed and 
     const int du = 1 + trial % 4, dv = 1 + (trial / 4) % 4;
     const bool rational = trial % 3 == 0;
     const bool trimmed = trial % 2 == 0;
-    ts::Surface s = trimmed ? trimmed_random_surface(rng, du, dv, rational) : ts::Surface{"", random_patch(rng, du, dv, rational), {}, -1, false};
+    ts::Surface s = trimmed ? trimmed_random_surface(rng, du, dv, rational)
+                            : ts::Surface{"", random_patch(rng, du, dv, rational), {}, -1, false};
     const ts::PreparedSurface prepared = ts::prepare_surface(s);
     const ts::Camera cam = random_camera(rng);
     for (double tol : {2.0, 0.5}) {
@@ -116,9 +117,10 @@ TEST_CASE("screen-space deviation stays within the pixel tolerance, trimmed and 
       REQUIRE(r.inconsistencies() == 0);
       const DeviationProbe probe = probe_deviation(s.patch, tri, cam, rng, 400);
       probed += probe.samples > 0;
-      INFO("trial " << trial << " degree " << du << "x" << dv << (rational ? " rational" : "") << (trimmed ? " trimmed" : "")
-                    << ", steps " << r.steps.n_u << "x" << r.steps.n_v << ", tolerance " << tol << " px: worst "
-                    << probe.worst_px << " px at (u,v) = (" << probe.at_uv.x << ", " << probe.at_uv.y << ")");
+      INFO("trial " << trial << " degree " << du << "x" << dv << (rational ? " rational" : "")
+                    << (trimmed ? " trimmed" : "") << ", steps " << r.steps.n_u << "x" << r.steps.n_v << ", tolerance "
+                    << tol << " px: worst " << probe.worst_px << " px at (u,v) = (" << probe.at_uv.x << ", "
+                    << probe.at_uv.y << ")");
       // float vertex positions add ~1e-7 relative: far below a pixel here.
       CHECK(probe.worst_px <= tol * 1.0001 + 1e-3);
     }
@@ -148,7 +150,8 @@ TEST_CASE("negative control: a quarter of the step counts breaks the pixel toler
   CHECK(worst > settings.pixel_tolerance);
 }
 
-TEST_CASE("a plate with a circular hole: no triangle in the hole, area converges to the exact trimmed area", "[tessellate]") {
+TEST_CASE("a plate with a circular hole: no triangle in the hole, area converges to the exact trimmed area",
+          "[tessellate]") {
   ts::Surface plate{"plate", flat_plate(1.0), {}, -1, false};
   plate.loops.push_back(polyline_loop({{0, 0}, {1, 0}, {1, 1}, {0, 1}}));  // the domain: dropped as outer loop
   plate.loops.push_back(circle_loop({0.5, 0.5}, 0.25, false));
@@ -170,7 +173,8 @@ TEST_CASE("a plate with a circular hole: no triangle in the hole, area converges
     double area = 0;
     double deepest = 0;  // how far a triangle's centroid reaches into the hole
     for (std::size_t t = 0; t < tri.indices.size(); t += 3) {
-      const glm::dvec3 a = tri.positions[tri.indices[t]], b = tri.positions[tri.indices[t + 1]], c = tri.positions[tri.indices[t + 2]];
+      const glm::dvec3 a = tri.positions[tri.indices[t]], b = tri.positions[tri.indices[t + 1]],
+                       c = tri.positions[tri.indices[t + 2]];
       area += 0.5 * glm::cross(b - a, c - a).z;  // counter-clockwise seen from +z: positive
       const glm::dvec2 centroid = glm::dvec2((a + b + c) / 3.0);
       deepest = std::max(deepest, 0.25 - glm::length(centroid - glm::dvec2(0.5)));
@@ -178,8 +182,9 @@ TEST_CASE("a plate with a circular hole: no triangle in the hole, area converges
     const double error = std::abs(area - exact);
     // The trim polyline is inscribed within ε_dom of the curve; the Bézier circle is within 3e-4·r of a circle.
     const double eps_domain = plan.epsilon / (prepared.bounds.len_u + prepared.bounds.len_v);
-    INFO("tolerance " << tol << " px: steps " << r.steps.n_u << "x" << r.steps.n_v << ", " << r.trim_points << " trim points, "
-                      << r.triangles << " triangles, area " << area << " vs exact " << exact << ", deepest " << deepest);
+    INFO("tolerance " << tol << " px: steps " << r.steps.n_u << "x" << r.steps.n_v << ", " << r.trim_points
+                      << " trim points, " << r.triangles << " triangles, area " << area << " vs exact " << exact
+                      << ", deepest " << deepest);
     CHECK(deepest <= eps_domain + 0.25 * 2.8e-4 + 1e-9);
     CHECK(error <= previous_error * 1.0000001);
     // Inscribed chords within ε_dom of the curve lose at most perimeter · ε_dom of area.
@@ -226,8 +231,8 @@ TEST_CASE("trimmed triangles stay inside their polyline trim region", "[tessella
       const glm::dvec2 centroid = (a + b + c) / 3.0;
       if (!inside(outer, centroid) || inside(hole, centroid)) ++outside;
     }
-    INFO("trial " << trial << ": steps " << r.steps.n_u << "x" << r.steps.n_v << ", " << r.triangles << " triangles, area "
-                  << area << " vs " << exact);
+    INFO("trial " << trial << ": steps " << r.steps.n_u << "x" << r.steps.n_v << ", " << r.triangles
+                  << " triangles, area " << area << " vs " << exact);
     CHECK(outside == 0);
     CHECK(area == Approx(exact).margin(1e-5));  // polyline trims: the triangles tile the region exactly
   }
@@ -245,8 +250,8 @@ TEST_CASE("culling never removes a patch with a visible point", "[tessellate]") 
     if (trial % 2) {
       for (int i = 0; i <= s.patch.degree_u; ++i) {
         for (int j = 0; j <= s.patch.degree_v; ++j) {
-          const glm::dvec3 p{2.0 * i / s.patch.degree_u - 1 + 0.1 * (unit(rng) - 0.5), 2.0 * j / s.patch.degree_v - 1 + 0.1 * (unit(rng) - 0.5),
-                             0.3 * (unit(rng) - 0.5)};
+          const glm::dvec3 p{2.0 * i / s.patch.degree_u - 1 + 0.1 * (unit(rng) - 0.5),
+                             2.0 * j / s.patch.degree_v - 1 + 0.1 * (unit(rng) - 0.5), 0.3 * (unit(rng) - 0.5)};
           s.patch.set(i, j, p, s.patch.weight(i, j));
         }
       }
@@ -267,7 +272,8 @@ TEST_CASE("culling never removes a patch with a visible point", "[tessellate]") 
       const bool in_view = frustum.contains(sp.position);
       const bool front = glm::dot(sp.normal, cam.eye - sp.position) > 0;
       INFO("trial " << trial << " culled by " << (plan.culled == ts::Culled::frustum ? "frustum" : "back face")
-                    << " but the point (" << sp.position.x << ", " << sp.position.y << ", " << sp.position.z << ") is visible");
+                    << " but the point (" << sp.position.x << ", " << sp.position.y << ", " << sp.position.z
+                    << ") is visible");
       REQUIRE_FALSE((in_view && (plan.culled == ts::Culled::frustum || front)));
     }
   }
@@ -297,7 +303,9 @@ std::vector<glm::dvec3> edge_controls(const ts::BezierPatch& p, int e) {
 std::vector<glm::dvec3> edge_vertices(const ts::TriangleBuffers& b, ts::StepSizes steps, int e) {
   std::vector<glm::dvec3> out;
   const int n = (e % 2 == 0) ? steps.n_u : steps.n_v;
-  const auto at = [&](int i, int j) { return glm::dvec3(b.positions[static_cast<std::size_t>(i * (steps.n_v + 1) + j)]); };
+  const auto at = [&](int i, int j) {
+    return glm::dvec3(b.positions[static_cast<std::size_t>(i * (steps.n_v + 1) + j)]);
+  };
   for (int k = 0; k <= n; ++k) {
     if (e == 0) out.push_back(at(k, 0));
     if (e == 1) out.push_back(at(steps.n_u, k));
@@ -309,10 +317,12 @@ std::vector<glm::dvec3> edge_vertices(const ts::TriangleBuffers& b, ts::StepSize
 
 // Over all pairs of teapot patch edges with equal control points (forward or reversed), the largest distance
 // between matching boundary vertices, with patch k tessellated at steps_of(k).
-double worst_seam_gap(const ts::Model& m, const std::function<ts::StepSizes(std::size_t)>& steps_of, int* shared_edges) {
+double worst_seam_gap(const ts::Model& m, const std::function<ts::StepSizes(std::size_t)>& steps_of,
+                      int* shared_edges) {
   std::vector<ts::TriangleBuffers> buffers(m.surfaces.size());
   std::vector<ts::BernsteinTable> basis;
-  for (std::size_t k = 0; k < m.surfaces.size(); ++k) ts::tessellate_untrimmed(m.surfaces[k].patch, steps_of(k), buffers[k], basis);
+  for (std::size_t k = 0; k < m.surfaces.size(); ++k)
+    ts::tessellate_untrimmed(m.surfaces[k].patch, steps_of(k), buffers[k], basis);
   double worst = 0;
   *shared_edges = 0;
   for (std::size_t a = 0; a < m.surfaces.size(); ++a) {
@@ -321,10 +331,13 @@ double worst_seam_gap(const ts::Model& m, const std::function<ts::StepSizes(std:
         for (int eb = 0; eb < 4; ++eb) {
           const auto ca = edge_controls(m.surfaces[a].patch, ea), cb = edge_controls(m.surfaces[b].patch, eb);
           if (ca.size() != cb.size()) continue;
-          const bool forward = std::equal(ca.begin(), ca.end(), cb.begin(), [](auto x, auto y) { return glm::length(x - y) < 1e-9; });
-          const bool backward = std::equal(ca.begin(), ca.end(), cb.rbegin(), [](auto x, auto y) { return glm::length(x - y) < 1e-9; });
+          const bool forward =
+              std::equal(ca.begin(), ca.end(), cb.begin(), [](auto x, auto y) { return glm::length(x - y) < 1e-9; });
+          const bool backward =
+              std::equal(ca.begin(), ca.end(), cb.rbegin(), [](auto x, auto y) { return glm::length(x - y) < 1e-9; });
           if (!forward && !backward) continue;
-          if (glm::length(ca.front() - ca.back()) < 1e-9 && glm::length(ca[1] - ca[0]) < 1e-9) continue;  // collapsed edge
+          if (glm::length(ca.front() - ca.back()) < 1e-9 && glm::length(ca[1] - ca[0]) < 1e-9)
+            continue;  // collapsed edge
           ++*shared_edges;
           auto va = edge_vertices(buffers[a], steps_of(a), ea), vb = edge_vertices(buffers[b], steps_of(b), eb);
           if (backward) std::reverse(vb.begin(), vb.end());
@@ -347,12 +360,22 @@ TEST_CASE("teapot: adjacent untrimmed patches with equal steps share their bound
   const ts::Model m = teapot();
   REQUIRE(m.surfaces.size() == 32);
   int shared = 0;
-  const double gap = worst_seam_gap(m, [](std::size_t) { return ts::StepSizes{7, 7}; }, &shared);
+  const double gap = worst_seam_gap(
+      m,
+      [](std::size_t) {
+        return ts::StepSizes{7, 7};
+      },
+      &shared);
   INFO(shared << " shared edges, worst gap " << gap);
   CHECK(shared >= 40);
   CHECK(gap < 1e-5);  // float vertex positions
   // Negative control: unequal step counts across a seam leave vertices with no partner (a crack).
-  const double cracked = worst_seam_gap(m, [](std::size_t k) { return ts::StepSizes{k % 2 ? 7 : 8, k % 2 ? 7 : 8}; }, &shared);
+  const double cracked = worst_seam_gap(
+      m,
+      [](std::size_t k) {
+        return ts::StepSizes{k % 2 ? 7 : 8, k % 2 ? 7 : 8};
+      },
+      &shared);
   CHECK(cracked > 1e-3);
 }
 
@@ -390,7 +413,8 @@ TEST_CASE("steady-state frames reuse their buffers, and OBJ and PLY export", "[t
   ts::TessellationScratch scratch;
   ts::TessellationSettings settings;
   const auto frame = [&] {
-    for (std::size_t k = 0; k < prepared.size(); ++k) ts::tessellate_surface(prepared[k], cam, ts::Frustum::of(cam), settings, scratch, buffers[k]);
+    for (std::size_t k = 0; k < prepared.size(); ++k)
+      ts::tessellate_surface(prepared[k], cam, ts::Frustum::of(cam), settings, scratch, buffers[k]);
   };
   frame();
   std::vector<const void*> before;

@@ -10,7 +10,8 @@ namespace ts = frontsteal::tess;
 namespace {
 
 // Unit square 0..3 (counter-clockwise), a midpoint 4 on the bottom edge, and a square hole 5..8 (clockwise).
-const std::vector<glm::dvec2> kPositions = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0}, {0.4, 0.4}, {0.4, 0.6}, {0.6, 0.6}, {0.6, 0.4}};
+const std::vector<glm::dvec2> kPositions = {{0, 0},     {1, 0},     {1, 1},     {0, 1},    {0.5, 0},
+                                            {0.4, 0.4}, {0.4, 0.6}, {0.6, 0.6}, {0.6, 0.4}};
 
 ts::PolygonRing ring(std::initializer_list<std::uint32_t> ids) {
   ts::PolygonRing r;
@@ -21,7 +22,8 @@ ts::PolygonRing ring(std::initializer_list<std::uint32_t> ids) {
 ts::TilingVerdict audit(const ts::PolygonRing& outer, const std::vector<ts::PolygonRing>& holes,
                         const std::vector<std::uint32_t>& triangles) {
   ts::TilingAudit a;
-  return a.check(outer, holes, triangles, [](std::uint32_t id) { return kPositions[id]; }, 1e-14);
+  return a.check(
+      outer, holes, triangles, [](std::uint32_t id) { return kPositions[id]; }, 1e-14);
 }
 
 }  // namespace

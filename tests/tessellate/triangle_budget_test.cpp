@@ -205,7 +205,8 @@ TEST_CASE("triangle budget: under budget nothing changes", "[fast]") {
   }
 }
 
-TEST_CASE("triangle budget: an unachievable budget leaves 1 x 1 grids and is reported, culled surfaces untouched", "[fast]") {
+TEST_CASE("triangle budget: an unachievable budget leaves 1 x 1 grids and is reported, culled surfaces untouched",
+          "[fast]") {
   const ts::TessellationSettings settings;
   Scene sc(41, 30);
   for (std::size_t k = 0; k < sc.plans.size(); k += 5) sc.plans[k].culled = ts::Culled::frustum;

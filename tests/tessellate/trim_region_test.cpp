@@ -40,7 +40,8 @@ struct Totals {
   double worst_escape = 0;  // how far a piece vertex lies outside its cell
 };
 
-Totals cut(const std::vector<ts::Polygon2>& loops, const std::vector<double>& ul, const std::vector<double>& vl, int* inconsistencies) {
+Totals cut(const std::vector<ts::Polygon2>& loops, const std::vector<double>& ul, const std::vector<double>& vl,
+           int* inconsistencies) {
   ts::GridTrimmer t;
   t.run(loops, ul, vl);
   Totals tot;

@@ -44,7 +44,8 @@ inline TrimLoop polyline_loop(const std::vector<glm::dvec2>& pts) {
 }
 
 // A star-shaped polygon about c: random radii in [r_lo, r_hi] at n increasing angles; CCW, or CW when reversed.
-inline std::vector<glm::dvec2> random_star(std::mt19937_64& rng, glm::dvec2 c, double r_lo, double r_hi, int n, bool ccw) {
+inline std::vector<glm::dvec2> random_star(std::mt19937_64& rng, glm::dvec2 c, double r_lo, double r_hi, int n,
+                                           bool ccw) {
   std::uniform_real_distribution<double> radius(r_lo, r_hi);
   std::vector<glm::dvec2> pts;
   for (int k = 0; k < n; ++k) {
@@ -60,7 +61,8 @@ inline std::vector<glm::dvec2> random_star(std::mt19937_64& rng, glm::dvec2 c, d
 // Gauss–Legendre (5 points: exact for the degree ≤ 2·3 − 1 integrands of cubic segments, and close beyond).
 inline double loop_area(const TrimLoop& loop) {
   static const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
-  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665, 0.2369268850561891};
+  static const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                              0.2369268850561891};
   double a = 0;
   for (const TrimSegment& seg : loop.segments) {
     const int d = seg.degree();

@@ -97,12 +97,13 @@ TEST_CASE("a victim order visits every other worker once", "[papers][simulation]
 }
 
 TEST_CASE("a steal takes the upper half, the victim keeps the lower (rounded down)", "[papers][simulation]") {
-  CHECK(sim::steal_mid(4u, 9u) == 6u);    // 5 left: victim keeps 2, thief takes [6, 9)
-  CHECK(sim::steal_mid(0u, 1u) == 0u);    // 1 left: the thief takes it
+  CHECK(sim::steal_mid(4u, 9u) == 6u);  // 5 left: victim keeps 2, thief takes [6, 9)
+  CHECK(sim::steal_mid(0u, 1u) == 0u);  // 1 left: the thief takes it
   CHECK(sim::steal_mid(10u, 20u) == 15u);
 }
 
-TEST_CASE("the next frame's lists are what each worker ran, in id order, duplicates to the first", "[papers][simulation]") {
+TEST_CASE("the next frame's lists are what each worker ran, in id order, duplicates to the first",
+          "[papers][simulation]") {
   const std::vector<std::vector<ItemId>> ran{{5, 0, 2}, {1, 2, 4}, {3}};
   const auto next = sim::lists_from_runs(ran, 6);
   CHECK(next[0] == std::vector<ItemId>{0, 2, 5});

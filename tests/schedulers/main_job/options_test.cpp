@@ -26,12 +26,15 @@ mj::Options parse(std::vector<std::string> args) {
   return mj::parse_options(static_cast<int>(argv.size()), argv.data());
 }
 
-bool has(const std::vector<std::string>& v, const std::string& x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+bool has(const std::vector<std::string>& v, const std::string& x) {
+  return std::find(v.begin(), v.end(), x) != v.end();
+}
 
 }  // namespace
 
-TEST_CASE("a bare run: every exactly-once scheduler at P = 1 .. cores and 2 x cores, rounds and instances as documented",
-          "[main-job][options]") {
+TEST_CASE(
+    "a bare run: every exactly-once scheduler at P = 1 .. cores and 2 x cores, rounds and instances as documented",
+    "[main-job][options]") {
   const mj::Options o = parse({});
   const unsigned cores = frontsteal::hardware_cores();
   std::vector<frontsteal::WorkerId> want;
@@ -53,9 +56,26 @@ TEST_CASE("a bare run: every exactly-once scheduler at P = 1 .. cores and 2 x co
 }
 
 TEST_CASE("the measurement flags land in their fields, and the analysis settings follow them", "[main-job][options]") {
-  const mj::Options o = parse({"--threads", "2,3", "--schedulers", "queue-mutex,stealing/Minimal", "--repeats", "7",
-                               "--round-frames", "4", "--instance-frames", "0", "--margin", "5", "--no-adjust",
-                               "--estimator", "mean", "--order", "counterbalanced", "--frames", "12", "--no-pin"});
+  const mj::Options o = parse({"--threads",
+                               "2,3",
+                               "--schedulers",
+                               "queue-mutex,stealing/Minimal",
+                               "--repeats",
+                               "7",
+                               "--round-frames",
+                               "4",
+                               "--instance-frames",
+                               "0",
+                               "--margin",
+                               "5",
+                               "--no-adjust",
+                               "--estimator",
+                               "mean",
+                               "--order",
+                               "counterbalanced",
+                               "--frames",
+                               "12",
+                               "--no-pin"});
   CHECK(o.threads == std::vector<frontsteal::WorkerId>{2, 3});
   CHECK(o.schedulers == std::vector<std::string>{"queue-mutex", "stealing/Minimal"});
   CHECK(o.repeats == 7);

@@ -47,7 +47,8 @@ std::vector<std::vector<double>> estimated_costs(ts::CameraPathKind kind, int fr
     const ts::Camera cam = ts::camera_on(kind, s.box, f, frames, 1280, 720, &s.dense);
     const ts::Frustum fr = ts::Frustum::of(cam);
     std::vector<double> c;
-    for (const ts::PreparedSurface& p : s.prepared) c.push_back(ts::estimate_cost(p, ts::plan_surface(p, cam, fr, settings), settings));
+    for (const ts::PreparedSurface& p : s.prepared)
+      c.push_back(ts::estimate_cost(p, ts::plan_surface(p, cam, fr, settings), settings));
     costs.push_back(std::move(c));
   }
   return costs;

@@ -59,7 +59,8 @@ TEST_CASE("subcommands: beside the executable, then the build tree's folder, the
 
   REQUIRE_FALSE(mj::locate_program("frontsteal-paper", "papers", self.string()));
   make_program(t.root / "bin" / "frontsteal-paper");
-  REQUIRE(mj::locate_program("frontsteal-paper", "papers", self.string()) == (t.root / "bin" / "frontsteal-paper").string());
+  REQUIRE(mj::locate_program("frontsteal-paper", "papers", self.string()) ==
+          (t.root / "bin" / "frontsteal-paper").string());
   make_program(t.root / "build" / "papers" / "frontsteal-paper");
   REQUIRE(mj::locate_program("frontsteal-paper", "papers", self.string()) ==
           (t.root / "build" / "papers" / "frontsteal-paper").string());
