@@ -34,9 +34,7 @@ void write_run_plots(const std::string& dir_name, const std::string& title,
   }
   dir.write("frontsteal-mpi-ranks.dat", ranks.str());
   std::ostringstream gp;
-  gp << "# gnuplot script written by frontsteal-mpi; run from " << dir_name << ": gnuplot frontsteal-mpi.gp\n"
-     << "set terminal pngcairo size 1100,640 font 'sans,10' noenhanced\nset grid\nset key outside bottom center "
-        "horizontal\n"
+  gp << "set grid\nset key outside bottom center horizontal\n"
      << "set output 'frontsteal-mpi-frames.png'\n"
      << "set title \"Frame time per scheduler (measured)\\n"
      << report::gnuplot_text(title, true) << "\"\n"
@@ -51,7 +49,7 @@ void write_run_plots(const std::string& dir_name, const std::string& title,
      << "plot 'frontsteal-mpi-ranks.dat' using 2:xtic(1) title 'busy (items)' lc rgb '#3b75af', "
         "'' using 3 title 'idle (stealing, waiting)' lc rgb '#f0a030', "
         "'' using 4 title 'rest of the frame (protocol, progress calls, preemption, barrier)' lc rgb '#c8c8c8'\n";
-  dir.write("frontsteal-mpi.gp", gp.str());
+  dir.write_gnuplot("frontsteal-mpi.gp", {1100, 640, "font 'sans,10' noenhanced"}, gp.str());
   dir.plot("frontsteal-mpi.gp");
 }
 

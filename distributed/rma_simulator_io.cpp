@@ -93,16 +93,14 @@ void write_efficiency_plot(const std::string& dir_name, const report::Json& rows
   }
   dir.write("simulated-efficiency.dat", dat.str());
   std::ostringstream gp;
-  gp << "# gnuplot script written by frontsteal-mpi-simulate; run from " << dir_name
-     << ": gnuplot simulated-efficiency.gp\n"
-     << "set terminal pngcairo size 1100,640 font 'sans,10' noenhanced\nset output 'simulated-efficiency.png'\n"
+  gp << "set output 'simulated-efficiency.png'\n"
      << "set title \"SIMULATED efficiency = work / (ranks x time), not a measurement\\n"
      << report::gnuplot_text(subtitle) << "\"\n"
      << "set logscale x 2\nset xlabel 'ranks'\nset ylabel 'efficiency'\nset yrange [0:1.05]\nset grid\n"
      << "set key outside right top\n"
      << "plot for [i=0:" << (order.empty() ? 0 : order.size() - 1) << "] 'simulated-efficiency.dat' index i "
      << "using 1:2 with linespoints lt 1+i%4 dt 1+i/4 pt 1+i title columnheader(1)\n";
-  dir.write("simulated-efficiency.gp", gp.str());
+  dir.write_gnuplot("simulated-efficiency.gp", {1100, 640, "font 'sans,10' noenhanced"}, gp.str());
   dir.plot("simulated-efficiency.gp");
 }
 

@@ -241,7 +241,7 @@ report::Json scene_json(const SceneCurves& c) {
 void write_plot(const std::vector<SceneCurves>& all, PaperRun& run, const std::string& name, const ErrorBand& band) {
   const double e = band.pct / 100.0;
   std::ostringstream gp, gp_efficiency;
-  gp << "set terminal pngcairo size 1500,900 font 'sans,10'\nset output '" << name << ".png'\n"
+  gp << "set output '" << name << ".png'\n"
      << "set multiplot layout 2," << all.size()
      << " title \"Tessellation rate against processors: lines SIMULATED "
         "(trace-driven)"
@@ -298,7 +298,7 @@ void write_plot(const std::vector<SceneCurves>& all, PaperRun& run, const std::s
     gp_efficiency << '\n';
   }
   gp << gp_efficiency.str() << "unset multiplot\n";
-  run.dir().write(name + ".gp", gp.str());
+  run.dir().write_gnuplot(name + ".gp", {1500, 900}, gp.str());
 }
 
 }  // namespace

@@ -236,7 +236,7 @@ void write_plot(const std::vector<Row>& rows, PaperRun& run) {
         << (paired ? kPaperTable1[i].partition_utilization_pct : 0) << ' ' << r.sim_rr.utilization_pct << ' '
         << r.sim_sp.utilization_pct << ' ' << r.meas_rr.utilization_pct << ' ' << r.meas_sp.utilization_pct << '\n';
   }
-  gp << "set terminal pngcairo size 1100,620 font 'sans,10'\nset output 'table1.png'\n"
+  gp << "set output 'table1.png'\n"
      << "set title \"Table 1: utilization, round robin vs spatial partition\\n"
      << machine_line() << ", commit " << run.commit()
      << "\"\nset style data histograms\nset style histogram clustered gap 1\n"
@@ -256,7 +256,7 @@ void write_plot(const std::vector<Row>& rows, PaperRun& run) {
         "'' using 7 title 'MEASURED: spatial (P="
      << pm << ")' lc rgb '#31a354'\n";
   run.dir().write("table1.dat", dat.str());
-  run.dir().write("table1.gp", gp.str());
+  run.dir().write_gnuplot("table1.gp", {1100, 620}, gp.str());
 }
 
 }  // namespace

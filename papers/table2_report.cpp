@@ -216,7 +216,7 @@ void write_plot(const std::vector<Row>& rows, const std::vector<std::string>& sc
         << ' ' << p.updates_per_s << ' ' << r.s.tessellations_per_second << ' ' << r.s.updates_per_second << ' '
         << p.average_lag << ' ' << r.s.mean_lag << '\n';
   }
-  gp << "set terminal pngcairo size 1100,560 font 'sans,10'\nset output 'table2.png'\n"
+  gp << "set output 'table2.png'\n"
      << "set multiplot layout 1,2 title \"Table 2: greedy rendering, paper (SGI Onyx RE2) vs MEASURED here\\n"
      << machine_line() << ", commit " << run.commit() << "\"\n"
      << "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
@@ -230,7 +230,7 @@ void write_plot(const std::vector<Row>& rows, const std::vector<std::string>& sc
         "'#31a354'\n"
      << "unset multiplot\n";
   run.dir().write("table2.dat", dat.str());
-  run.dir().write("table2.gp", gp.str());
+  run.dir().write_gnuplot("table2.gp", {1100, 560}, gp.str());
 }
 
 }  // namespace

@@ -175,14 +175,12 @@ void write_results(const Options& o, const ts::Model& model, const rd::GreedySta
   dir.write("render.md", md.str());
   dir.write_json("render.json", js);
   dir.write("render.csv", update_table(st).csv());
-  dir.write("render.gp",
-            "# gnuplot script written by frontsteal-render; run from " + o.out +
-                ": gnuplot render.gp\n"
-                "set terminal pngcairo size 900,420\nset output 'render-lag.png'\nset datafile separator ','\n"
-                "set title 'Greedy rendering: lag of the drawn triangles behind the view (measured)'\n"
-                "set xlabel 'pusher update'\nset ylabel 'lag (frames)'\nset key top left\n"
-                "plot 'render.csv' every ::1 using 1:4 with lines lw 2 title 'mean over components', "
-                "'' every ::1 using 1:5 with lines title 'max'\n");
+  dir.write_gnuplot("render.gp", {900, 420, ""},
+                    "set output 'render-lag.png'\nset datafile separator ','\n"
+                    "set title 'Greedy rendering: lag of the drawn triangles behind the view (measured)'\n"
+                    "set xlabel 'pusher update'\nset ylabel 'lag (frames)'\nset key top left\n"
+                    "plot 'render.csv' every ::1 using 1:4 with lines lw 2 title 'mean over components', "
+                    "'' every ::1 using 1:5 with lines title 'max'\n");
   dir.plot("render.gp");
   std::cout << md.str();
 }

@@ -72,6 +72,16 @@ void ResultsDir::write(std::string_view name, std::string_view text) const {
 
 void ResultsDir::write_json(std::string_view name, const Json& doc) const { write(name, doc.dump(2) + "\n"); }
 
+void ResultsDir::write_gnuplot(std::string_view name, PngCanvas canvas, std::string_view commands) const {
+  std::string text = "# gnuplot script written by " + program_ + "; run from " + dir_.string() + ": gnuplot " +
+                     std::string(name) + "\nset terminal pngcairo size " + std::to_string(canvas.width) + "," +
+                     std::to_string(canvas.height);
+  if (!canvas.options.empty()) text += " " + std::string(canvas.options);
+  text += "\n";
+  text += commands;
+  write(name, text);
+}
+
 bool ResultsDir::plot(std::string_view script) const {
   // Quoted for the shell: directory names with spaces or quotes must not break (or inject into) the command.
   auto quote = [](const std::string& s) {

@@ -41,6 +41,14 @@ class ResultsDir {
   // Runs gnuplot on `script` (a file already written in this directory) from inside the directory.
   // False, with a warning on stderr, when gnuplot is missing or fails; the script stays.
   bool plot(std::string_view script) const;
+  // Writes the gnuplot script `name`: the opening every frontsteal script shares (which program wrote it and
+  // how to re-plot it, the PNG terminal at `canvas`), then `commands` (set output, titles, plots). Throws as
+  // write(); plot(name) then draws it.
+  struct PngCanvas {
+    int width = 1100, height = 640;
+    std::string_view options = "font 'sans,10'";  // more pngcairo terminal options
+  };
+  void write_gnuplot(std::string_view name, PngCanvas canvas, std::string_view commands) const;
 
  private:
   std::string program_;

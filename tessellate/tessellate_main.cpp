@@ -122,14 +122,13 @@ void plot_uv_triangles(const Options& o, const report::ResultsDir& dir, const st
   dir.write(stem + ".dat", dat.str());
   const char* defect = o.planted_defect == ts::PlantedDefect::none ? "" : " (PLANTED DEFECT, negative control)";
   std::ostringstream gp;
-  gp << "# gnuplot script written by frontsteal-tessellate; run from " << o.out << "\n"
-     << "set terminal pngcairo size 800,800\nset output '" << stem << ".png'\nset size square\n"
+  gp << "set output '" << stem << ".png'\nset size square\n"
      << "set xrange [0:1]\nset yrange [0:1]\nset xlabel 'u'\nset ylabel 'v'\n"
      << "set title \"" << name << ", frame " << o.export_frame << ": " << b.triangle_count() << " triangles in (u, v)"
      << defect << "\\ndarker = covered twice\" noenhanced\n"
      << "plot '" << stem << ".dat' with filledcurves closed fs transparent solid 0.5 lc rgb '#3060c0' notitle, "
      << "'' with lines lc rgb '#102040' lw 0.5 notitle\n";
-  dir.write(stem + ".gp", gp.str());
+  dir.write_gnuplot(stem + ".gp", {800, 800, ""}, gp.str());
   dir.plot(stem + ".gp");
 }
 

@@ -91,8 +91,7 @@ void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir&
   const WorkerId max_p = *std::max_element(o.threads.begin(), o.threads.end());
   const std::size_t rounds = a.rows.empty() ? 0 : a.rows.front().vs_serial.c.rounds;
   std::ostringstream gp;
-  gp << "# gnuplot script written by frontsteal; run from " << o.out << ": gnuplot frontsteal.gp\n"
-     << "set terminal pngcairo size 1200,760 font 'sans,10'\nset key outside right top\nset grid\n"
+  gp << "set key outside right top\nset grid\n"
      << "set output 'frontsteal-speedup.png'\n"
      << "set title \"Paired speed-up over the serial loop (measured; per-round T1 / T(P), 95 % interval; open "
         "marks: not decided): "
@@ -132,7 +131,7 @@ void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir&
      << "plot for [i=0:" << blocks - 1
      << "] 'frontsteal-frames.dat' index i using 1:2 with linespoints "
         "lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1)\n";
-  dir.write("frontsteal.gp", gp.str());
+  dir.write_gnuplot("frontsteal.gp", {1200, 760}, gp.str());
   if (o.plot) dir.plot("frontsteal.gp");
 }
 
