@@ -28,6 +28,21 @@ TEST_CASE("a fifth of the synthetic ids are heavy, and the window moves every fr
   }
 }
 
+namespace {
+
+// Checks that frame f's serial reference is the sum of the items run one by one here.
+void check_serial_is_sum_of_items(mpi::Workload& wl, int frames) {
+  for (int f = 0; f < frames; ++f) {
+    std::uint64_t sum = 0;
+    for (ItemId id = 0; id < wl.n; ++id) sum += wl.run(f, id);
+    INFO("frame " << f);
+    CHECK(sum > 0);
+    CHECK(wl.serial_triangles(f) == sum);
+  }
+}
+
+}  // namespace
+
 TEST_CASE("the synthetic workload's serial count is the sum of its items", "[distributed][workload]") {
   mpi::Options o;
   o.scene = "synthetic:300";
@@ -36,11 +51,7 @@ TEST_CASE("the synthetic workload's serial count is the sum of its items", "[dis
   mpi::build_workload(o, 0, wl);
   CHECK(wl.kind == "synthetic");
   REQUIRE(wl.n == 300);
-  for (int f = 0; f < 3; ++f) {
-    std::uint64_t sum = 0;
-    for (ItemId id = 0; id < wl.n; ++id) sum += wl.run(f, id);
-    CHECK(wl.serial_triangles(f) == sum);
-  }
+  check_serial_is_sum_of_items(wl, 3);
 }
 
 TEST_CASE("the tessellation workload's serial reference is its own items, frame by frame", "[distributed][workload]") {
@@ -52,12 +63,7 @@ TEST_CASE("the tessellation workload's serial reference is its own items, frame 
   CHECK(wl.kind == "tessellation");
   REQUIRE(wl.n == 26);  // the teacup's patches
   REQUIRE(wl.serial.size() == 2);
-  for (int f = 0; f < 2; ++f) {
-    std::uint64_t sum = 0;
-    for (ItemId id = 0; id < wl.n; ++id) sum += wl.run(f, id);
-    CHECK(sum > 0);
-    CHECK(wl.serial_triangles(f) == sum);
-  }
+  check_serial_is_sum_of_items(wl, 2);
   mpi::Workload other_rank;  // ranks other than 0 skip the serial loop
   mpi::build_workload(o, 1, other_rank);
   CHECK(other_rank.serial.empty());
