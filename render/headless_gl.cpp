@@ -33,7 +33,7 @@ EGLDisplay open_display() {
 
 }  // namespace
 
-HeadlessGL::HeadlessGL(int width, int height) : width_(width), height_(height) {
+HeadlessGL::HeadlessGL(int width, int height, GLVersion version) : width_(width), height_(height) {
   if (width < 1 || height < 1 || width > 16384 || height > 16384) {
     throw GraphicsError("headless OpenGL: image size " + std::to_string(width) + "x" + std::to_string(height) +
                         " is out of range (1..16384)");
@@ -49,12 +49,18 @@ HeadlessGL::HeadlessGL(int width, int height) : width_(width), height_(height) {
   // Surfaceless: any config that renders OpenGL will do (we draw into our own framebuffer object).
   if (!eglChooseConfig(display, config_attributes, &config, 1, &configs)) fail("eglChooseConfig");
   if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(OpenGL)");
-  const EGLint context_attributes[] = {
-      EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                       version.major,
+                                       EGL_CONTEXT_MINOR_VERSION,
+                                       version.minor,
+                                       EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                       EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                       EGL_NONE};
   EGLContext context =
       eglCreateContext(display, configs > 0 ? config : EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, context_attributes);
-  if (context == EGL_NO_CONTEXT) fail("eglCreateContext (OpenGL 3.3 core)");
+  if (context == EGL_NO_CONTEXT) {
+    fail("eglCreateContext (OpenGL " + std::to_string(version.major) + "." + std::to_string(version.minor) + " core)");
+  }
   context_ = context;
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) fail("eglMakeCurrent (surfaceless)");
 
