@@ -94,24 +94,32 @@ inline void grid_indices(int nu, int nv, std::uint32_t* index) noexcept {
 struct FloatGridScratch {
   std::vector<float> basis, derivative, rows;
   std::vector<std::uint8_t> degenerate;
+  // The v-basis tables above were made for this degree and n_v: consecutive surfaces of one scene mostly share
+  // both, and then the tables are reused as they are.
+  int basis_degree = -1, basis_steps = -1;
 };
 
 // The same grid as tessellate_untrimmed (below), each row by the SIMD float kernel (grid_row_kernel.hpp).
 // Use only where float_row_error_bound(patch) is well inside the tolerance (plan_surface decides).
 inline void tessellate_untrimmed_float(const BezierPatch& patch, StepSizes steps, TriangleBuffers& out,
                                        FloatGridScratch& scratch) {
-  out.clear();
+  // No clear(): every element is overwritten below, and resizing a buffer that already holds this surface's
+  // last grid (the steady state) writes nothing, where clear() + resize() zero-filled it all first.
   const int nu = steps.n_u, nv = steps.n_v, n = nv + 1, dv = patch.degree_v, padded = padded_row(n);
-  scratch.basis.assign(static_cast<std::size_t>((dv + 1) * padded), 0.0f);
-  scratch.derivative.assign(scratch.basis.size(), 0.0f);
   scratch.rows.resize(static_cast<std::size_t>(6 * padded));
   scratch.degenerate.resize(static_cast<std::size_t>(n));
-  for (int j = 0; j <= nv; ++j) {
-    const BernsteinTable b = bernstein(dv, static_cast<double>(j) / nv);
-    for (int k = 0; k <= dv; ++k) {
-      scratch.basis[static_cast<std::size_t>(k * padded + j)] = static_cast<float>(b.value[k]);
-      scratch.derivative[static_cast<std::size_t>(k * padded + j)] = static_cast<float>(b.derivative[k]);
+  if (scratch.basis_degree != dv || scratch.basis_steps != nv) {
+    scratch.basis.assign(static_cast<std::size_t>((dv + 1) * padded), 0.0f);
+    scratch.derivative.assign(scratch.basis.size(), 0.0f);
+    for (int j = 0; j <= nv; ++j) {
+      const BernsteinTable b = bernstein(dv, static_cast<double>(j) / nv);
+      for (int k = 0; k <= dv; ++k) {
+        scratch.basis[static_cast<std::size_t>(k * padded + j)] = static_cast<float>(b.value[k]);
+        scratch.derivative[static_cast<std::size_t>(k * padded + j)] = static_cast<float>(b.derivative[k]);
+      }
     }
+    scratch.basis_degree = dv;
+    scratch.basis_steps = nv;
   }
   const std::size_t vertices = static_cast<std::size_t>((nu + 1) * n);
   out.positions.resize(vertices);
@@ -153,7 +161,7 @@ inline void tessellate_untrimmed_float(const BezierPatch& patch, StepSizes steps
 
 inline void tessellate_untrimmed(const BezierPatch& patch, StepSizes steps, TriangleBuffers& out,
                                  std::vector<BernsteinTable>& v_basis_scratch) {
-  out.clear();
+  // No clear(), as in tessellate_untrimmed_float: every element is overwritten.
   const int nu = steps.n_u;
   const int nv = steps.n_v;
   v_basis_scratch.resize(static_cast<std::size_t>(nv + 1));

@@ -24,6 +24,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -75,8 +77,8 @@ inline bool in_triangle(const glm::dvec2& p, const glm::dvec2& a, const glm::dve
 // wave-1 defect, kept only so the negative controls can plant it and show that the tiling audit catches it.
 enum class BridgeCopy : std::uint8_t { sector, first_copy };
 
-// Splices each hole into `outer` with a bridge (step 1 above). `outer` is modified in place.
-inline void join_holes(PolygonRing& outer, std::vector<PolygonRing>& holes, BridgeCopy copy = BridgeCopy::sector) {
+// Splices each hole into `outer` with a bridge (step 1 above). `outer` is modified in place, `holes` reordered.
+inline void join_holes(PolygonRing& outer, std::span<PolygonRing> holes, BridgeCopy copy = BridgeCopy::sector) {
   std::sort(holes.begin(), holes.end(), [](const PolygonRing& a, const PolygonRing& b) {
     const auto max_u = [](const PolygonRing& r) {
       double m = -std::numeric_limits<double>::infinity();
@@ -85,7 +87,7 @@ inline void join_holes(PolygonRing& outer, std::vector<PolygonRing>& holes, Brid
     };
     return max_u(a) > max_u(b);
   });
-  PolygonRing merged;
+  thread_local PolygonRing merged;  // swapped with `outer` below: both keep their capacity
   for (std::size_t h = 0; h < holes.size(); ++h) {
     const PolygonRing& hole = holes[h];
     if (hole.size() < 3) continue;
@@ -107,18 +109,24 @@ inline void join_holes(PolygonRing& outer, std::vector<PolygonRing>& holes, Brid
       }
       return false;
     };
+    // The nearest visible vertex (the first in ring order among equally near ones), preferring vertices to the
+    // right (the classic ray direction), then any. Candidates are tried nearest first, so the visibility test
+    // (every edge, each time) usually runs once or twice instead of once per nearer vertex met in ring order.
     std::size_t best = outer.size();
-    double best_d = std::numeric_limits<double>::infinity();
-    // Prefer vertices to the right (the classic ray direction), then any visible vertex.
+    thread_local std::vector<std::pair<double, std::size_t>> candidates;  // keeps its capacity
     for (int pass = 0; pass < 2 && best == outer.size(); ++pass) {
+      candidates.clear();
       for (std::size_t k = 0; k < outer.size(); ++k) {
         const glm::dvec2 d = outer[k].uv - mp;
-        if (pass == 0 && d.x < 0) continue;
-        const double dist = glm::dot(d, d);
-        if (dist >= best_d || outer[k].uv == mp) continue;
-        if (crosses_any(mp, outer[k].uv)) continue;
-        best = k;
-        best_d = dist;
+        if ((pass == 0 && d.x < 0) || outer[k].uv == mp) continue;
+        candidates.emplace_back(glm::dot(d, d), k);
+      }
+      std::sort(candidates.begin(), candidates.end());
+      for (const auto& [dist, k] : candidates) {
+        if (!crosses_any(mp, outer[k].uv)) {
+          best = k;
+          break;
+        }
       }
     }
     if (best == outer.size()) best = 0;  // degenerate input: join anyway; ear clipping still terminates
@@ -158,8 +166,15 @@ inline void clip_ears(const PolygonRing& ring, std::vector<std::uint32_t>& trian
     const std::uint32_t a = prev[b], c = next[b];
     const glm::dvec2 &pa = ring[a].uv, &pb = ring[b].uv, &pc = ring[c].uv;
     if (detail::cross2(pa, pb, pc) <= 0) return false;
+    // A vertex outside the triangle's bounding box is outside the triangle: most are rejected by four
+    // comparisons before in_triangle's three cross products. The answers differ only where in_triangle's own
+    // was an accident of rounding (a point beyond the box yet within a few ulps of a corner); the frame's
+    // triangles came out byte-identical with and without the box (frame_benchmark --frame-digest).
+    const double lo_u = std::min({pa.x, pb.x, pc.x}), hi_u = std::max({pa.x, pb.x, pc.x});
+    const double lo_v = std::min({pa.y, pb.y, pc.y}), hi_v = std::max({pa.y, pb.y, pc.y});
     for (std::uint32_t k = next[c]; k != a; k = next[k]) {
       const glm::dvec2& p = ring[k].uv;
+      if (p.x < lo_u || p.x > hi_u || p.y < lo_v || p.y > hi_v) continue;
       if (p == pa || p == pb || p == pc) continue;  // bridge duplicates
       if (detail::in_triangle(p, pa, pb, pc)) return false;
     }

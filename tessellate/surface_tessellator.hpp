@@ -34,7 +34,9 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -44,6 +46,7 @@
 #include "tessellate/culling.hpp"
 #include "tessellate/grid_tessellator.hpp"
 #include "tessellate/model.hpp"
+#include "tessellate/phase_profile.hpp"
 #include "tessellate/polygon_triangulation.hpp"
 #include "tessellate/step_sizes.hpp"
 #include "tessellate/tiling_audit.hpp"
@@ -220,6 +223,7 @@ struct SurfaceResult {
 // Per-worker scratch: everything a surface's tessellation needs, reused across surfaces and frames.
 struct TessellationScratch {
   std::vector<BernsteinTable> u_basis, v_basis;
+  std::pair<int, int> u_basis_for{-1, -1}, v_basis_for{-1, -1};  // (degree, steps) the tables were made for
   std::vector<double> u_lines, v_lines;
   std::vector<Polygon2> loops;
   GridTrimmer trimmer;
@@ -229,6 +233,7 @@ struct TessellationScratch {
   std::vector<std::uint32_t> ring_triangles, next, prev;
   TilingAudit tiling;
   FloatGridScratch float_grid;
+  PhaseProfile* profile = nullptr;  // where the time goes (phase_profile.hpp); none in the product
   static constexpr std::uint32_t kNone = 0xffff'ffffu;
 };
 
@@ -255,6 +260,7 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
   SurfaceResult result;
   result.steps = plan.steps;
   result.capped = plan.capped;
+  PhaseLap lap(scratch.profile);
   out.clear();
   // Trim polylines at this frame's n_t.
   scratch.loops.resize(s.loops.size());
@@ -281,13 +287,22 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
   for (int i = 0; i <= nu; ++i) scratch.u_lines[i] = static_cast<double>(i) / nu;
   for (int j = 0; j <= nv; ++j) scratch.v_lines[j] = static_cast<double>(j) / nv;
   scratch.u_lines[nu] = scratch.v_lines[nv] = 1.0;
+  lap.to(Phase::trim_polylines);
   GridTrimmer& trimmer = scratch.trimmer;
   trimmer.run(scratch.loops, scratch.u_lines, scratch.v_lines);
+  lap.to(Phase::trace);
 
-  scratch.u_basis.resize(static_cast<std::size_t>(nu + 1));
-  scratch.v_basis.resize(static_cast<std::size_t>(nv + 1));
-  for (int i = 0; i <= nu; ++i) scratch.u_basis[i] = bernstein(patch.degree_u, scratch.u_lines[i]);
-  for (int j = 0; j <= nv; ++j) scratch.v_basis[j] = bernstein(patch.degree_v, scratch.v_lines[j]);
+  // The grid lines' basis tables depend only on (degree, steps); kept while consecutive surfaces share them.
+  if (scratch.u_basis_for != std::pair(patch.degree_u, nu)) {
+    scratch.u_basis.resize(static_cast<std::size_t>(nu + 1));
+    for (int i = 0; i <= nu; ++i) scratch.u_basis[i] = bernstein(patch.degree_u, scratch.u_lines[i]);
+    scratch.u_basis_for = {patch.degree_u, nu};
+  }
+  if (scratch.v_basis_for != std::pair(patch.degree_v, nv)) {
+    scratch.v_basis.resize(static_cast<std::size_t>(nv + 1));
+    for (int j = 0; j <= nv; ++j) scratch.v_basis[j] = bernstein(patch.degree_v, scratch.v_lines[j]);
+    scratch.v_basis_for = {patch.degree_v, nv};
+  }
   scratch.corner_vertex.assign(static_cast<std::size_t>((nu + 1) * (nv + 1)), TessellationScratch::kNone);
   scratch.trim_vertex.assign(trimmer.points().size(), TessellationScratch::kNone);
 
@@ -351,11 +366,16 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
               return p.uv.x >= u0 && p.uv.x <= u1 && p.uv.y >= v0 && p.uv.y <= v1;
             });
           };
-          for (const TracedPiece& piece : trimmer.trace(i, j)) {
+          lap.to(Phase::trimmed_cells);
+          const std::span<const TracedPiece> pieces = trimmer.trace(i, j);
+          lap.to(Phase::trace);
+          for (const TracedPiece& piece : pieces) {
             scratch.ring = piece.outer;
-            scratch.holes.assign(piece.holes.begin(), piece.holes.end());
-            if (!scratch.holes.empty()) {
-              join_holes(scratch.ring, scratch.holes,
+            if (!piece.holes.empty()) {
+              // Copied into rings that keep their capacity (assign() would free and reallocate them).
+              if (scratch.holes.size() < piece.holes.size()) scratch.holes.resize(piece.holes.size());
+              for (std::size_t h = 0; h < piece.holes.size(); ++h) scratch.holes[h] = piece.holes[h];
+              join_holes(scratch.ring, std::span<PolygonRing>(scratch.holes.data(), piece.holes.size()),
                          settings.planted_defect == PlantedDefect::bridge_to_first_copy ? BridgeCopy::first_copy
                                                                                         : BridgeCopy::sector);
             }
@@ -364,10 +384,12 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
             if (settings.planted_defect == PlantedDefect::drop_ear && scratch.ring_triangles.size() > 3) {
               scratch.ring_triangles.erase(scratch.ring_triangles.begin(), scratch.ring_triangles.begin() + 3);
             }
+            lap.to(Phase::triangulate);
             const bool exact = scratch.tiling.check(piece.outer, piece.holes, scratch.ring_triangles, position,
                                                     degenerate_area2) == TilingVerdict::exact;
             const bool inside = in_cell(piece.outer) && std::all_of(piece.holes.begin(), piece.holes.end(), in_cell);
             if (!exact || !inside) ++result.tiling_violations;
+            lap.to(Phase::audit);
             for (std::size_t t = 0; t < scratch.ring_triangles.size(); t += 3) {
               const std::uint32_t* tri = &scratch.ring_triangles[t];
               const double area2 = detail::cross2(position(tri[0]), position(tri[1]), position(tri[2]));
@@ -381,6 +403,7 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
       }
     }
   }
+  lap.to(Phase::trimmed_cells);
   result.trace_failures = static_cast<std::uint32_t>(trimmer.inconsistencies());
   // Nudging trim points off grid lines (trim_region.hpp, step 1) moves each by at most 1e-6 of a cell, which
   // changes the enclosed area by at most perimeter · 1e-6 · cell size; anything beyond twice that is a defect.
@@ -402,11 +425,14 @@ inline SurfaceResult tessellate_planned(const PreparedSurface& s, const SurfaceP
     return culled;
   }
   if (s.trimmed()) return tessellate_trimmed(s, plan, settings, scratch, out);
+  PhaseLap lap(scratch.profile);
   if (plan.single_precision) {
     tessellate_untrimmed_float(s.surface->patch, plan.steps, out, scratch.float_grid);
   } else {
     tessellate_untrimmed(s.surface->patch, plan.steps, out, scratch.v_basis);
+    scratch.v_basis_for = {-1, -1};  // overwritten: the trimmed path must make its tables again
   }
+  lap.to(Phase::untrimmed_grid);
   SurfaceResult r;
   r.steps = plan.steps;
   r.capped = plan.capped;
@@ -418,7 +444,10 @@ inline SurfaceResult tessellate_planned(const PreparedSurface& s, const SurfaceP
 inline SurfaceResult tessellate_surface(const PreparedSurface& s, const Camera& camera, const Frustum& frustum,
                                         const TessellationSettings& settings, TessellationScratch& scratch,
                                         TriangleBuffers& out) {
-  return tessellate_planned(s, plan_surface(s, camera, frustum, settings), settings, scratch, out);
+  PhaseLap lap(scratch.profile);
+  const SurfacePlan plan = plan_surface(s, camera, frustum, settings);
+  lap.to(plan.culled == Culled::no ? Phase::plan : Phase::cull);
+  return tessellate_planned(s, plan, settings, scratch, out);
 }
 
 }  // namespace frontsteal::tess

@@ -147,9 +147,8 @@ class GridTrimmer {
             ++inconsistencies_;
             continue;
           }
-          home->holes.emplace_back();
-          for (std::uint32_t p = ch.first; p < ch.first + ch.count; ++p)
-            push_vertex(home->holes.back(), chain_points_[p]);
+          PolygonRing& hole = new_hole(*home);
+          for (std::uint32_t p = ch.first; p < ch.first + ch.count; ++p) push_vertex(hole, chain_points_[p]);
         }
       }
     }
@@ -355,8 +354,17 @@ class GridTrimmer {
     if (pieces_used_ == pieces_.size()) pieces_.emplace_back();
     TracedPiece& p = pieces_[pieces_used_++];
     p.outer.clear();
+    // The hole rings go back to a pool with their capacity, so the next hole reuses one instead of allocating.
+    for (PolygonRing& hole : p.holes) spare_rings_.push_back(std::move(hole));
     p.holes.clear();
     return p;
+  }
+  PolygonRing& new_hole(TracedPiece& piece) {
+    if (spare_rings_.empty()) return piece.holes.emplace_back();
+    PolygonRing& ring = piece.holes.emplace_back(std::move(spare_rings_.back()));
+    spare_rings_.pop_back();
+    ring.clear();
+    return ring;
   }
 
   void push_vertex(PolygonRing& ring, std::uint32_t id) const {
@@ -418,6 +426,7 @@ class GridTrimmer {
   std::vector<std::uint32_t> open_, closed_;
   std::vector<std::uint8_t> used_;
   std::vector<TracedPiece> pieces_;
+  std::vector<PolygonRing> spare_rings_;  // hole rings of earlier pieces, kept for their capacity
   std::size_t pieces_used_ = 0;
 };
 
