@@ -10,6 +10,7 @@
 #include <string>
 
 #include "render/headless_gl.hpp"
+#include "tessellate/grid_row_kernel.hpp"
 
 namespace frontsteal::render {
 
@@ -172,15 +173,9 @@ std::optional<GpuPlantedDefect> gpu_planted_defect_named(std::string_view name) 
 }
 
 double gpu_float_error_bound(const tess::BezierPatch& patch) noexcept {
-  double max_p = 0, w_min = INFINITY, w_max = 0;
-  for (const glm::dvec4& h : patch.control) {
-    const glm::dvec3 p = glm::dvec3(h) / h.w;
-    max_p = std::max({max_p, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-    w_min = std::min(w_min, h.w);
-    w_max = std::max(w_max, h.w);
-  }
+  const tess::ControlNetScale net = tess::control_net_scale(patch);
   constexpr double kUnit = 1.0 / 16777216.0;  // 2^-24
-  return 4.0 * (2.0 * (patch.degree_u + patch.degree_v) + 6.0) * kUnit * max_p * (w_max / w_min);
+  return 4.0 * (2.0 * (patch.degree_u + patch.degree_v) + 6.0) * kUnit * net.max_coordinate * net.weight_spread;
 }
 
 GpuPatchTessellator::GpuPatchTessellator(GpuPlantedDefect defect) {

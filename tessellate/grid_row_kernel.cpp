@@ -117,7 +117,7 @@ void set_row_kernel_build(RowKernelBuild build) noexcept {
   g_force_baseline.store(build == RowKernelBuild::baseline, std::memory_order_relaxed);
 }
 
-double float_row_error_bound(const BezierPatch& patch) noexcept {
+ControlNetScale control_net_scale(const BezierPatch& patch) noexcept {
   double max_p = 0, w_min = INFINITY, w_max = 0;
   for (const glm::dvec4& h : patch.control) {
     const glm::dvec3 p = glm::dvec3(h) / h.w;
@@ -125,8 +125,13 @@ double float_row_error_bound(const BezierPatch& patch) noexcept {
     w_min = std::min(w_min, h.w);
     w_max = std::max(w_max, h.w);
   }
+  return {max_p, w_max / w_min};
+}
+
+double float_row_error_bound(const BezierPatch& patch) noexcept {
+  const ControlNetScale net = control_net_scale(patch);
   constexpr double kUnit = 1.0 / 16777216.0;  // 2^-24
-  return 4.0 * (2.0 * patch.degree_v + 6.0) * kUnit * max_p * (w_max / w_min);
+  return 4.0 * (2.0 * patch.degree_v + 6.0) * kUnit * net.max_coordinate * net.weight_spread;
 }
 
 }  // namespace frontsteal::tess

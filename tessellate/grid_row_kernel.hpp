@@ -53,4 +53,12 @@ void set_row_kernel_build(RowKernelBuild build) noexcept;
 // (2·degree_v + 6)·u·max|P|·(w_max/w_min), with a factor 4 of margin.
 double float_row_error_bound(const BezierPatch& patch) noexcept;
 
+// What every float error bound of a patch scales with: max|P| over the control points' coordinates and the
+// weights' spread w_max / w_min.
+struct ControlNetScale {
+  double max_coordinate = 0;
+  double weight_spread = 1;
+};
+ControlNetScale control_net_scale(const BezierPatch& patch) noexcept;
+
 }  // namespace frontsteal::tess
