@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
+#include "measure/machine_info.hpp"
 #include "measure/round_order.hpp"
 #include "tessellate/grid_audit.hpp"
 #include "tessellate/grid_row_kernel.hpp"
@@ -19,14 +19,6 @@ namespace frontsteal::render {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown";
-}
 
 // The CPU arm: patches [first, last) into their own buffers, each by the SIMD float row kernel.
 void cpu_tessellate(const std::vector<const tess::BezierPatch*>& patches, tess::StepSizes steps, std::size_t first,
@@ -58,22 +50,17 @@ void audit_step(const std::vector<const tess::BezierPatch*>& patches, std::size_
   for (const std::size_t k : which) {
     const tess::BezierPatch& patch = *patches[k];
     gpu.read_back(k, from_gpu);
-    tess::GridAuditLimits limits;
-    limits.position = gpu_float_error_bound(patch);
-    const tess::GridAudit a = tess::audit_grid(patch, steps, from_gpu, limits);
-    tess::tessellate_untrimmed_float(patch, steps, from_cpu, scratch);
-    const double distance = tess::max_position_difference(from_gpu, from_cpu);
-    const bool agrees =
-        distance <= limits.position + tess::float_row_error_bound(patch) && from_gpu.indices == from_cpu.indices;
+    const GpuGridCheck check = check_gpu_grid(patch, steps, from_gpu, from_cpu, scratch);
+    const tess::GridAudit& a = check.audit;
     ++r.audited_patches;
-    r.failing_patches += a.passed() && agrees ? 0 : 1;
+    r.failing_patches += check.passed() ? 0 : 1;
     r.failing_vertices += a.failing_vertices;
     r.index_mismatches += a.index_mismatches + (a.shape_ok ? 0 : 1);
     r.ill_conditioned_normals += a.ill_conditioned_normals;
     r.max_position_error = std::max(r.max_position_error, a.max_position_error);
-    r.max_position_bound = std::max(r.max_position_bound, limits.position);
+    r.max_position_bound = std::max(r.max_position_bound, check.position_bound);
     r.max_normal_angle = std::max(r.max_normal_angle, a.max_normal_angle);
-    r.max_gpu_cpu_distance = std::max(r.max_gpu_cpu_distance, distance);
+    r.max_gpu_cpu_distance = std::max(r.max_gpu_cpu_distance, check.gpu_cpu_distance);
   }
 }
 
@@ -98,6 +85,20 @@ bool GpuStepResult::method_passed() const noexcept {
          doubled_vs_gpu.decision == measure::Decision::kSlower && doubled > 1.8 && doubled < 2.2;
 }
 
+GpuGridCheck check_gpu_grid(const tess::BezierPatch& patch, tess::StepSizes steps, const tess::TriangleBuffers& grid,
+                            tess::TriangleBuffers& cpu_grid, tess::FloatGridScratch& scratch) {
+  GpuGridCheck c;
+  c.position_bound = gpu_float_error_bound(patch);
+  tess::GridAuditLimits limits;
+  limits.position = c.position_bound;
+  c.audit = tess::audit_grid(patch, steps, grid, limits);
+  tess::tessellate_untrimmed_float(patch, steps, cpu_grid, scratch);
+  c.gpu_cpu_distance = tess::max_position_difference(grid, cpu_grid);
+  c.agrees_with_cpu =
+      c.gpu_cpu_distance <= c.position_bound + tess::float_row_error_bound(patch) && grid.indices == cpu_grid.indices;
+  return c;
+}
+
 bool GpuBenchmarkResult::audit_passed() const noexcept {
   return std::all_of(steps.begin(), steps.end(), [](const GpuStepResult& s) { return s.failing_patches == 0; });
 }
@@ -111,9 +112,8 @@ GpuBenchmarkResult run_gpu_tessellation_benchmark(const tess::Model& model, cons
   if (scene.empty()) throw std::invalid_argument("the scene has no untrimmed surface (the GPU path does not trim)");
   if (options.rounds < 3) throw std::invalid_argument("rounds must be at least 3");
   result.scene_patches = scene.size();
-  result.cpu = cpu_model();
-  result.cpu_threads =
-      options.cpu_threads > 0 ? options.cpu_threads : std::max(1u, std::thread::hardware_concurrency());
+  result.cpu = frontsteal::cpu_model();
+  result.cpu_threads = options.cpu_threads > 0 ? options.cpu_threads : frontsteal::hardware_cores();
 
   GpuPatchTessellator gpu(options.planted_defect);
   std::vector<tess::FloatGridScratch> scratch(result.cpu_threads);

@@ -27,6 +27,8 @@
 #include "measure/paired_analysis.hpp"
 #include "measure/paired_comparison.hpp"
 #include "render/gpu_patch_tessellator.hpp"
+#include "tessellate/grid_audit.hpp"
+#include "tessellate/grid_tessellator.hpp"
 #include "tessellate/model.hpp"
 
 namespace frontsteal::render {
@@ -75,6 +77,17 @@ struct GpuBenchmarkResult {
   std::vector<GpuStepResult> steps;
   bool audit_passed() const noexcept;
 };
+
+// One read-back GPU grid against the exact surface (grid_audit.hpp, within gpu_float_error_bound) and against
+// the CPU's grid of the same patch (made into `cpu_grid`: distance within both float bounds, identical indices).
+struct GpuGridCheck {
+  tess::GridAudit audit;
+  double position_bound = 0, gpu_cpu_distance = 0;
+  bool agrees_with_cpu = false;
+  bool passed() const noexcept { return audit.passed() && agrees_with_cpu; }
+};
+GpuGridCheck check_gpu_grid(const tess::BezierPatch& patch, tess::StepSizes steps, const tess::TriangleBuffers& grid,
+                            tess::TriangleBuffers& cpu_grid, tess::FloatGridScratch& scratch);
 
 // The scene's untrimmed surfaces (trimmed ones are the CPU's: the GPU path has no trimming). Throws
 // GraphicsError without OpenGL 4.3, std::invalid_argument when the scene has no untrimmed surface.
