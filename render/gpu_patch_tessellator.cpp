@@ -19,7 +19,8 @@ namespace {
 constexpr int kGroupSize = 128;
 
 // One work group per patch. Header of patch p: header[2p] = (degree_u, degree_v, n_u, n_v), header[2p+1] =
-// (first control point, first vertex, first index, 0). Planted defects (tests only) are #defines put in front.
+// (first control point, first vertex, first index, 0). ORDER (the largest degree + 1 the program handles) and the
+// planted defects (tests only) are #defines put in front.
 constexpr const char* kShaderBody = R"(
 layout(local_size_x = 128) in;
 layout(std430, binding = 0) readonly buffer Headers { uvec4 header[]; };
@@ -30,12 +31,12 @@ layout(std430, binding = 4) writeonly buffer Uvs { float uv[]; };
 layout(std430, binding = 5) writeonly buffer Indices { uint index[]; };
 uniform uint patch_base;
 
-shared vec4 hull[64];
+shared vec4 hull[ORDER * ORDER];
 
 // B_i^d(t) and B_i^d'(t), i = 0..d, by the triangle recurrence (bezier_patch.hpp's bernstein, in float).
-void bernstein(uint d, float t, out float value[8], out float derivative[8]) {
-  float b[8];
-  for (uint i = 0u; i < 8u; ++i) b[i] = 0.0;
+void bernstein(uint d, float t, out float value[ORDER], out float derivative[ORDER]) {
+  float b[ORDER];
+  for (uint i = 0u; i < uint(ORDER); ++i) b[i] = 0.0;
   b[0] = 1.0;
   float s = 1.0 - t;
   for (uint k = 1u; k < d; ++k) {
@@ -62,7 +63,7 @@ void bernstein(uint d, float t, out float value[8], out float derivative[8]) {
 
 // Position, S_u, S_v at (u, v) from the control points in shared memory.
 void surface(uint m, uint n, float u, float v, out vec3 p, out vec3 pu, out vec3 pv) {
-  float bu[8], du[8], bv[8], dv[8];
+  float bu[ORDER], du[ORDER], bv[ORDER], dv[ORDER];
   bernstein(m, u, bu, du);
   bernstein(n, v, bv, dv);
   vec4 s = vec4(0.0), su = vec4(0.0), sv = vec4(0.0);
@@ -132,8 +133,8 @@ void main() {
 
 [[noreturn]] void fail(const std::string& what) { throw GraphicsError("GPU tessellation: " + what); }
 
-unsigned compile(GpuPlantedDefect defect) {
-  std::string source = "#version 430 core\n";
+unsigned compile(GpuPlantedDefect defect, int order) {
+  std::string source = "#version 430 core\n#define ORDER " + std::to_string(order) + "\n";
   if (defect == GpuPlantedDefect::swapped_parameters) source += "#define PLANT_SWAPPED_PARAMETERS 1\n";
   if (defect == GpuPlantedDefect::last_row_unwritten) source += "#define PLANT_LAST_ROW_UNWRITTEN 1\n";
   source += kShaderBody;
@@ -178,7 +179,7 @@ double gpu_float_error_bound(const tess::BezierPatch& patch) noexcept {
   return 4.0 * (2.0 * (patch.degree_u + patch.degree_v) + 6.0) * kUnit * net.max_coordinate * net.weight_spread;
 }
 
-GpuPatchTessellator::GpuPatchTessellator(GpuPlantedDefect defect) {
+GpuPatchTessellator::GpuPatchTessellator(GpuPlantedDefect defect) : defect_(defect) {
   GLint major = 0, minor = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   glGetIntegerv(GL_MINOR_VERSION, &minor);
@@ -186,10 +187,18 @@ GpuPatchTessellator::GpuPatchTessellator(GpuPlantedDefect defect) {
     fail("needs OpenGL 4.3 (compute shaders); the context has " + std::to_string(major) + "." + std::to_string(minor) +
          " (make it with HeadlessGL(w, h, {4, 3}))");
   }
-  program_ = compile(defect);
-  patch_base_location_ = glGetUniformLocation(program_, "patch_base");
+  use_order(kCommonOrder);
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups_);
   glGenBuffers(6, buffers_);
+}
+
+void GpuPatchTessellator::use_order(int order) {
+  if (order == order_) return;
+  const unsigned program = compile(defect_, order);
+  if (program_ != 0) glDeleteProgram(program_);
+  program_ = program;
+  order_ = order;
+  patch_base_location_ = glGetUniformLocation(program_, "patch_base");
 }
 
 GpuPatchTessellator::~GpuPatchTessellator() {
@@ -224,6 +233,11 @@ void GpuPatchTessellator::load(const std::vector<const tess::BezierPatch*>& patc
     total_indices_ += 6 * static_cast<std::uint64_t>(s.n_u) * static_cast<std::uint64_t>(s.n_v);
   }
   steps_ = steps;
+  // Per-invocation arrays and the shared control net are sized by ORDER: the common program stays small
+  // (occupancy), and a batch holding a higher degree gets a program of its own.
+  int order = kCommonOrder;
+  for (const tess::BezierPatch* p : patches) order = std::max({order, p->degree_u + 1, p->degree_v + 1});
+  use_order(order);
   GLint64 block_limit = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block_limit);
   // The shader addresses every buffer with 32-bit offsets, in floats or indices.

@@ -70,6 +70,13 @@ class GpuPatchTessellator {
   void read_back(std::size_t k, tess::TriangleBuffers& out) const;
 
  private:
+  // Degrees up to 7 each way (bicubic and most CAD) share one program; higher degrees up to tess::kMaxDegree
+  // compile one sized for them when loaded.
+  static constexpr int kCommonOrder = 8;
+  void use_order(int order);
+
+  GpuPlantedDefect defect_ = GpuPlantedDefect::none;
+  int order_ = 0;
   unsigned program_ = 0;
   unsigned buffers_[6] = {};  // headers, controls, positions, normals, uvs, indices
   int patch_base_location_ = -1;

@@ -22,7 +22,9 @@
 
 namespace frontsteal::tess {
 
-inline constexpr int kMaxDegree = 7;
+// Open CASCADE's own limit for B-spline degrees (BSplCLib::MaxDegree()), so that any face a CAD file can hold
+// is evaluated at its own degree rather than approximated or skipped.
+inline constexpr int kMaxDegree = 25;
 
 struct BezierPatch {
   int degree_u = 3;

@@ -39,7 +39,8 @@ template <int W>
   __builtin_memcpy(p, &v, sizeof v);
 }
 
-// The row for one degree: k = 0..D unrolled, W vertices per step. The basis tables and the scratch are padded
+// The row for one degree: k = 0..D unrolled, W vertices per step (D = 0: the degree read at run time, for the
+// rare degrees above 7 imported CAD faces may have). The basis tables and the scratch are padded
 // to a multiple of kRowLanes (a multiple of W); padding lanes compute garbage that is never stored.
 template <int D, int W>
 [[gnu::always_inline]] inline void row(const RowKernelArgs& a) noexcept {
@@ -51,10 +52,11 @@ template <int D, int W>
   float* nx = sz + padded;
   float* ny = nx + padded;
   float* nz = ny + padded;
+  const int degree = D > 0 ? D : a.degree_v;
   for (int j = 0; j < padded; j += W) {
     V s0{}, s1{}, s2{}, s3{}, u0{}, u1{}, u2{}, u3{}, v0{}, v1{}, v2{}, v3{};
 #pragma GCC unroll 8
-    for (int k = 0; k <= D; ++k) {
+    for (int k = 0; k <= degree; ++k) {
       const V bk = load<W>(a.basis + k * padded + j), dk = load<W>(a.derivative + k * padded + j);
       s0 += bk * a.value[k][0], s1 += bk * a.value[k][1], s2 += bk * a.value[k][2], s3 += bk * a.value[k][3];
       u0 += bk * a.du[k][0], u1 += bk * a.du[k][1], u2 += bk * a.du[k][2], u3 += bk * a.du[k][3];
@@ -90,7 +92,8 @@ template <int W>
     case 4: row<4, W>(a); break;
     case 5: row<5, W>(a); break;
     case 6: row<6, W>(a); break;
-    default: row<7, W>(a); break;
+    case 7: row<7, W>(a); break;
+    default: row<0, W>(a); break;
   }
 }
 

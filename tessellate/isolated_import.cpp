@@ -5,6 +5,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -40,7 +41,8 @@ std::string one_line(std::string s) {
     Model model;
     const ImportReport r = import_cad_file(path, model, options);
     msg << "report " << r.faces << ' ' << r.faces_imported << ' ' << r.patches << ' ' << r.surfaces << ' '
-        << r.trim_loops << ' ' << r.loops_reoriented << ' ' << r.corner_loops_cut << '\n';
+        << r.trim_loops << ' ' << r.loops_reoriented << ' ' << r.corner_loops_cut << ' ' << std::hexfloat
+        << r.max_patch_error << std::defaultfloat << '\n';
     for (const ImportSkip& s : r.skipped) msg << "skip " << s.face << ' ' << one_line(s.reason) << '\n';
     for (const std::string& w : r.warnings) msg << "warn " << one_line(w) << '\n';
     msg << "model\n";
@@ -171,10 +173,12 @@ ImportReport import_cad_file_isolated(const std::string& path, Model& out, const
   report.file = path;
   {
     std::istringstream r(line);
-    std::string word;
+    std::string word, error;  // the error as a hexadecimal float (exact), which operator>> does not read
+    char* end = nullptr;
     if (!(r >> word >> report.faces >> report.faces_imported >> report.patches >> report.surfaces >>
-          report.trim_loops >> report.loops_reoriented >> report.corner_loops_cut) ||
-        word != "report") {
+          report.trim_loops >> report.loops_reoriented >> report.corner_loops_cut >> error) ||
+        word != "report" ||
+        (report.max_patch_error = std::strtod(error.c_str(), &end), end != error.c_str() + error.size())) {
       throw ImportFailure(ImportFailure::Cause::protocol, path + ": garbled result from the reader process");
     }
   }

@@ -7,7 +7,7 @@
 //     component <k>                     optional: connected-component id (>= 0)
 //     solid                             optional: part of a closed solid whose normals S_u × S_v point
 //                                       outwards (back faces may be culled)
-//     patch <degree_u> <degree_v>       degrees 1..7
+//     patch <degree_u> <degree_v>       degrees 1..25
 //     cp <x> <y> <z> [<w>]              (degree_u+1)(degree_v+1) control points, i along u outer, j along v
 //                                       inner; w > 0 (default 1)
 //     loop                              zero or more trim loops; the first is the outer one (CCW), the

@@ -518,7 +518,7 @@ class FaceImporter {
         }
         if (bspline.IsNull()) return skip("face: its " + type + " could not be converted to a B-spline surface");
       }
-      if (bspline->UDegree() > kMaxDegree || bspline->VDegree() > kMaxDegree) {
+      if (bspline->UDegree() > kMaxDegree || bspline->VDegree() > kMaxDegree) {  // beyond Open CASCADE's own limit
         return skip("face: B-spline degree " + std::to_string(bspline->UDegree()) + "x" +
                     std::to_string(bspline->VDegree()) + " exceeds " + std::to_string(kMaxDegree));
       }
@@ -649,6 +649,24 @@ class FaceImporter {
           if (cover.kind == CellCover::Kind::empty) continue;
           const int patch_index = iu * nv + iv;
           BezierPatch patch = to_patch(split.Patch(iu + 1, iv + 1));
+          if (options_.planted_patch_shift) {
+            glm::dvec3 lo_p(std::numeric_limits<double>::max()), hi_p = -lo_p;
+            for (int i = 0; i <= patch.degree_u; ++i) {
+              for (int j = 0; j <= patch.degree_v; ++j)
+                lo_p = glm::min(lo_p, patch.point(i, j)), hi_p = glm::max(hi_p, patch.point(i, j));
+            }
+            const int i = patch.degree_u / 2, j = (patch.degree_v + 1) / 2;
+            patch.set(i, j, patch.point(i, j) + glm::dvec3(1e-3 * glm::distance(lo_p, hi_p)), patch.weight(i, j));
+          }
+          for (int a = 0; a <= 4; ++a) {
+            for (int b = 0; b <= 4; ++b) {
+              const double s = a / 4.0, t = b / 4.0;
+              const gp_Pnt q = cut->Value(u_lines[iu] + s * (u_lines[iu + 1] - u_lines[iu]),
+                                          v_lines[iv] + t * (v_lines[iv + 1] - v_lines[iv]));
+              const double error = glm::distance(evaluate(patch, s, t).position, glm::dvec3(q.X(), q.Y(), q.Z()));
+              report_.max_patch_error = std::max(report_.max_patch_error, error);
+            }
+          }
           if (reversed) patch = mirror_u(patch);
           const std::string name = stem_ + "_f" + std::to_string(index_) + "_p" + std::to_string(patch_index);
           if (cover.kind == CellCover::Kind::full) {

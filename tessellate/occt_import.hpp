@@ -5,8 +5,8 @@
 //
 // Per face of the file's shape (each distinct face once, in TopExp::MapShapes order, numbered from 0):
 //   1. BRepBuilderAPI_NurbsConvert turns analytic faces (planes, cylinders, cones, spheres, tori, revolved and
-//      extruded surfaces) into B-spline faces; a face whose B-spline degree exceeds kMaxDegree (7) in u or v
-//      is skipped, with the degrees in the reason.
+//      extruded surfaces) into B-spline faces. Every degree Open CASCADE allows (up to 25, kMaxDegree) is kept
+//      as it is: no face is approximated or skipped for its degree.
 //   2. Trim loops: each wire of the face taken FORWARD is walked with BRepTools_WireExplorer; every edge's
 //      p-curve (BRep_Tool::CurveOnSurface, which picks the right one of a seam edge's two by the edge's
 //      orientation) is sampled to a polyline in the face's (u, v) — `samples_per_span` segments per knot span,
@@ -57,6 +57,11 @@ struct ImportReport {
   int trim_loops = 0;        // closed (u, v) loops built from the wires of converted faces
   int loops_reoriented = 0;  // loops found the wrong way round for their nesting and reversed
   int corner_loops_cut = 0;  // loops where p-curves overshooting each other at a corner made a tiny loop, cut off
+  // The largest distance between a Bézier patch as imported (evaluated by bezier_patch.hpp) and Open CASCADE's
+  // own B-spline surface (Geom_Surface::D0) at the same parameters, over a 5×5 grid of every patch; in model
+  // units. It measures the conversion (knot splitting, the homogeneous form, rounding), checked by an
+  // evaluator that is not ours.
+  double max_patch_error = 0;
   std::vector<ImportSkip> skipped;
   // Whole-file doubts that are not errors: a STEP file without its END-ISO-10303-21 trailer or an IGES file
   // without its terminate section was probably cut short, so "43 of 213 faces" may be all that was read.
@@ -65,6 +70,9 @@ struct ImportReport {
 
 struct ImportOptions {
   int samples_per_span = 8;  // p-curve sampling: segments per knot span (>= 1)
+  // Tests only: every patch's middle control point (or the one after the middle) moved by a thousandth of the
+  // patch's extent before max_patch_error is measured, as a wrong knot split or weight conversion would.
+  bool planted_patch_shift = false;
 };
 
 // Reads a .step/.stp/.iges/.igs/.brep file (chosen by extension, case-insensitive) and appends its faces to

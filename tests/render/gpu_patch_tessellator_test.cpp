@@ -4,6 +4,9 @@
 // against the CPU's double grid (passes) and a hand-broken copy (fails).
 #include <catch2/catch.hpp>
 
+#include <random>
+#include <utility>
+
 #include "render/gpu_patch_tessellator.hpp"
 #include "render/gpu_tessellation_benchmark.hpp"
 #include "render/headless_gl.hpp"
@@ -11,6 +14,7 @@
 #include "tessellate/grid_row_kernel.hpp"
 #include "tessellate/model_format.hpp"
 #include "tessellate/scene_generator.hpp"
+#include "tests/tessellate/random_patch.hpp"
 
 namespace ts = frontsteal::tess;
 namespace rd = frontsteal::render;
@@ -106,6 +110,36 @@ TEST_CASE("GPU tessellation benchmark: audit, rounds and the method's check on a
   o.planted_defect = rd::GpuPlantedDefect::swapped_parameters;
   o.steps = {6};
   CHECK_FALSE(rd::run_gpu_tessellation_benchmark(teapot(), o).audit_passed());
+  gl.release();
+}
+
+TEST_CASE("GPU tessellation: degrees above 7 (imported CAD faces) get a program of their own and pass the audit",
+          "[render][gpu]") {
+  rd::HeadlessGL gl(16, 16, {4, 3});
+  gl.make_current();
+  std::mt19937_64 rng(11);
+  std::vector<ts::BezierPatch> owned;
+  for (const auto [du, dv] : {std::pair{2, 11}, std::pair{8, 8}, std::pair{3, 3}, std::pair{ts::kMaxDegree, 2},
+                              std::pair{ts::kMaxDegree, ts::kMaxDegree}}) {
+    owned.push_back(frontsteal::tess::testing::random_patch(rng, du, dv, true));
+  }
+  std::vector<const ts::BezierPatch*> patches;
+  for (const ts::BezierPatch& p : owned) patches.push_back(&p);
+  const ts::StepSizes steps{5, 9};
+  for (const rd::GpuPlantedDefect defect : {rd::GpuPlantedDefect::none, rd::GpuPlantedDefect::swapped_parameters}) {
+    rd::GpuPatchTessellator gpu(defect);
+    gpu.load(patches, std::vector<ts::StepSizes>(patches.size(), steps));
+    gpu.dispatch();
+    rd::GpuPatchTessellator::finish();
+    int failing = 0;
+    ts::TriangleBuffers grid, cpu;
+    ts::FloatGridScratch scratch;
+    for (std::size_t k = 0; k < patches.size(); ++k) {
+      gpu.read_back(k, grid);
+      failing += rd::check_gpu_grid(*patches[k], steps, grid, cpu, scratch).passed() ? 0 : 1;
+    }
+    CHECK(failing == (defect == rd::GpuPlantedDefect::none ? 0 : static_cast<int>(patches.size())));
+  }
   gl.release();
 }
 

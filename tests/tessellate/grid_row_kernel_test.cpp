@@ -44,8 +44,11 @@ TEST_CASE("float grid equals the double grid within its error bound, both kernel
   ts::FloatGridScratch scratch;
   for (ts::RowKernelBuild build : {ts::RowKernelBuild::best_for_cpu, ts::RowKernelBuild::baseline}) {
     ts::set_row_kernel_build(build);
-    for (int trial = 0; trial < 200; ++trial) {
-      const int du = 1 + trial % 7, dv = 1 + (trial / 7) % 7;
+    // Degrees 1..11 in both directions (the unrolled kernels go to 7, the run-time-degree one beyond), then
+    // the largest degree.
+    for (int trial = 0; trial < 204; ++trial) {
+      const int du = trial < 200 ? 1 + trial % 11 : (trial % 2 == 0 ? ts::kMaxDegree : 2);
+      const int dv = trial < 200 ? 1 + (trial / 11) % 11 : ts::kMaxDegree;
       const ts::BezierPatch patch = random_patch(rng, du, dv, trial % 2 == 1);
       const ts::StepSizes steps{1 + trial % 23, 1 + (trial * 7) % 41};
       ts::tessellate_untrimmed(patch, steps, exact, basis);

@@ -68,8 +68,11 @@ std::string describe(const ts::BezierPatch& p, ts::StepSizes s, const Worst& w, 
 
 TEST_CASE("triangles stay within the tolerance of random patches", "[tessellate][steps]") {
   std::mt19937_64 rng(42);
-  for (int trial = 0; trial < 120; ++trial) {
-    const ts::BezierPatch p = random_patch(rng, 1 + trial % 5, 1 + (trial / 5) % 5, trial % 4 == 3);
+  // Degrees 1..5, then the high degrees imported CAD faces have (8..11, and the largest).
+  for (int trial = 0; trial < 128; ++trial) {
+    const int du = trial < 120 ? 1 + trial % 5 : (trial < 126 ? 8 + trial % 4 : ts::kMaxDegree);
+    const int dv = trial < 120 ? 1 + (trial / 5) % 5 : (trial < 126 ? 2 + trial % 10 : 1 + (trial % 2) * 24);
+    const ts::BezierPatch p = random_patch(rng, du, dv, trial % 4 == 3);
     for (double eps : {0.05, 0.005}) {
       const ts::StepSizes s = ts::deviation_steps(ts::net_bounds(p), eps);
       const Worst w = worst_deviation(p, s, rng, 400);
