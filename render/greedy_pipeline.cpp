@@ -8,7 +8,7 @@
 
 namespace frontsteal::render {
 
-GreedySession::GreedySession(const tess::Model& m, std::uint32_t slots) : model_(m) {
+GreedySession::GreedySession(const tess::Model& m, std::uint32_t slots, bool reuse) : model_(m) {
   int components = 0;
   for (const tess::Surface& s : m.surfaces) {
     if (s.component < 0) throw std::invalid_argument("greedy rendering needs components (tess::assign_components)");
@@ -24,6 +24,7 @@ GreedySession::GreedySession(const tess::Model& m, std::uint32_t slots) : model_
   publication_ = std::make_unique<Publication>(sizes, slots);
   buffers_.assign(slots, std::vector<tess::TriangleBuffers>(m.surfaces.size()));
   slot_view_.assign(sizes.size(), std::vector<int>(slots, -1));
+  if (reuse) kept_.assign(slots, std::vector<tess::KeptTessellation>(m.surfaces.size()));
 }
 
 std::uint64_t GreedySession::prepare(int view) {
@@ -36,12 +37,23 @@ void GreedySession::tessellate(ItemId id, const tess::Camera& camera, const tess
                                const tess::TessellationSettings& settings, tess::TessellationScratch& scratch,
                                int cost_multiplier) {
   const auto c = static_cast<ComponentId>(model_.surfaces[id].component);
-  tess::TriangleBuffers& out = buffers_[publication_->back_slot(c)][id];
+  const SlotIndex slot = publication_->back_slot(c);
+  tess::TriangleBuffers& out = buffers_[slot][id];
   // The tessellation-bound mode (frontsteal-paper table2 --cost-multiplier K): the same surface K times into the
   // same back slot (no one reads it before finish_surface); the last result is the published one.
-  for (int k = 1; k < cost_multiplier; ++k)
-    tess::tessellate_surface(prepared_[id], camera, frustum, settings, scratch, out);
-  const tess::SurfaceResult r = tess::tessellate_surface(prepared_[id], camera, frustum, settings, scratch, out);
+  tess::SurfaceResult r;
+  bool remade = true;
+  if (!kept_.empty()) {
+    const tess::ReuseOutcome o =
+        tess::tessellate_or_reuse(prepared_[id], camera, frustum, settings, scratch, out, kept_[slot][id]);
+    r = o.result;
+    remade = o.remade;
+  } else {
+    r = tess::tessellate_surface(prepared_[id], camera, frustum, settings, scratch, out);
+  }
+  for (int k = 1; remade && k < cost_multiplier; ++k)
+    tess::tessellate_surface(prepared_[id], camera, frustum, settings, scratch, out);  // the same bytes again
+  if (remade) remade_.fetch_add(1, std::memory_order::relaxed);
   if (r.inconsistencies() > 0) inconsistencies_.fetch_add(1, std::memory_order::relaxed);
   publication_->finish_surface(c);
 }

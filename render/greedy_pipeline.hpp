@@ -29,6 +29,7 @@
 #include "render/image.hpp"
 #include "tessellate/camera.hpp"
 #include "tessellate/model.hpp"
+#include "tessellate/surface_reuse.hpp"
 #include "tessellate/surface_tessellator.hpp"
 
 namespace frontsteal::render {
@@ -40,7 +41,9 @@ class GreedySession {
   using Publication = ComponentPublication<StdBackend, PublicationOrders>;
 
   // `model` must have components assigned (tess::assign_components); throws std::invalid_argument otherwise.
-  GreedySession(const tess::Model& model, std::uint32_t slots);
+  // `reuse`: a surface whose steps and trim polylines did not change since its back slot's buffer was made keeps
+  // that buffer (tessellate/surface_reuse.hpp: the same bytes as recomputing them), as the paper's renderer does.
+  GreedySession(const tess::Model& model, std::uint32_t slots, bool reuse = false);
 
   const tess::Model& model() const noexcept { return model_; }
   ComponentId components() const noexcept { return static_cast<ComponentId>(component_surfaces_.size()); }
@@ -55,8 +58,12 @@ class GreedySession {
   void tessellate(ItemId id, const tess::Camera& camera, const tess::Frustum& frustum,
                   const tess::TessellationSettings& settings, tess::TessellationScratch& scratch,
                   int cost_multiplier = 1);
-  // Surface tessellations whose own audit failed (surface_tessellator.hpp, step 6).
+  // Surface tessellations whose own audit failed (surface_tessellator.hpp, step 6); with reuse, a kept buffer's
+  // audit counts again each time it is reused.
   std::uint64_t inconsistencies() const noexcept { return inconsistencies_.load(std::memory_order::relaxed); }
+  // Surfaces actually tessellated (not reused) so far.
+  std::uint64_t remade() const noexcept { return remade_.load(std::memory_order::relaxed); }
+  bool reuse() const noexcept { return !kept_.empty(); }
 
  private:
   const tess::Model& model_;
@@ -64,9 +71,11 @@ class GreedySession {
   std::vector<std::vector<ItemId>> component_surfaces_;      // component -> its surfaces
   std::vector<std::vector<tess::TriangleBuffers>> buffers_;  // [slot][surface]
   std::vector<std::vector<int>> slot_view_;                  // [component][slot]: view the slot was tessellated for
+  std::vector<std::vector<tess::KeptTessellation>> kept_;    // [slot][surface], with reuse (else empty)
   std::unique_ptr<Publication> publication_;
   // Tessellators add, the driver reads after they stopped. Relaxed: a count, ordered by the threads' join.
   std::atomic<std::uint64_t> inconsistencies_{0};
+  std::atomic<std::uint64_t> remade_{0};
 };
 
 class GreedyPusher {

@@ -54,7 +54,7 @@ void validate(const GreedyOptions& o) {
 
 GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
   validate(o);
-  GreedySession s(model, o.slots);
+  GreedySession s(model, o.slots, o.reuse);
   const tess::Box box = tess::model_box(model);
   const auto camera = [&](int update) {  // path frame `update` (the batch run's view id)
     return tess::camera_on(o.path, box, update, o.updates, o.width, o.height);
@@ -177,6 +177,7 @@ GreedyStats run_greedy(const tess::Model& model, const GreedyOptions& o) {
   stats.seconds = seconds_since(start);
   stats.updates = o.updates;
   stats.tessellation_inconsistencies = s.inconsistencies();
+  stats.surfaces_remade = s.remade();
 
   // Statistics.
   double lag = 0, triangles = 0;

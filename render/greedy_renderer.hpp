@@ -51,6 +51,9 @@ struct GreedyOptions {
   // Tessellation-bound ("paper-era") mode: every surface is tessellated this many times per tessellation
   // frame, so the tessellators are K times slower than natural while the pusher is not (Table 2's second row).
   int cost_multiplier = 1;
+  // Frame-to-frame reuse of unchanged surfaces (tessellate/surface_reuse.hpp); frontsteal-render and -view turn
+  // it on unless --no-reuse.
+  bool reuse = false;
   std::function<void(const std::string&)> progress;  // a line now and then (may be empty)
 };
 
@@ -79,7 +82,8 @@ struct GreedyStats {
   double seconds = 0;
   int updates = 0;
   std::uint64_t tessellation_frames = 0;
-  std::uint64_t surfaces_tessellated = 0;
+  std::uint64_t surfaces_tessellated = 0;  // surfaces processed (reused ones included)
+  std::uint64_t surfaces_remade = 0;       // of those, the ones actually re-tessellated (all without reuse)
   std::uint64_t driver_waits = 0;
   std::uint64_t tessellation_inconsistencies = 0;  // surface tessellations that failed their own audit
   double updates_per_second = 0;

@@ -37,8 +37,8 @@ std::vector<std::string> LiveGreedy::scheduler_names() {
 }
 
 LiveGreedy::LiveGreedy(const tess::Model& model, WorkerId tessellators, std::uint32_t slots,
-                       const std::string& scheduler, const tess::TessellationSettings& settings)
-    : session_(model, slots), tessellators_(tessellators), settings_(settings), scheduler_(scheduler) {
+                       const std::string& scheduler, const tess::TessellationSettings& settings, bool reuse)
+    : session_(model, slots, reuse), tessellators_(tessellators), settings_(settings), scheduler_(scheduler) {
   if (tessellators < 1) throw std::invalid_argument("at least one tessellator");
   if (slots < 2) throw std::invalid_argument("a component needs at least 2 slots");
   usable(scheduler);
@@ -134,6 +134,7 @@ void LiveGreedy::drive() {
       const std::uint64_t waits = session_.prepare(r.view);
       const tess::Frustum frustum = tess::Frustum::of(r.camera);
       auto process = [&](ItemId id, WorkerId w) { session_.tessellate(id, r.camera, frustum, r.settings, scratch[w]); };
+      const std::uint64_t remade_before = session_.remade();
       const auto t0 = std::chrono::steady_clock::now();
       const FrameStats& st = scheduler->run_frame(process);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -147,6 +148,7 @@ void LiveGreedy::drive() {
         counters_.last_frame_ms = ms;
         counters_.driver_waits += waits;
         counters_.inconsistencies = session_.inconsistencies();
+        counters_.last_frame_remade = session_.remade() - remade_before;
         done_view_ = r.view;
       }
       changed_.notify_all();

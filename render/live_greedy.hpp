@@ -35,7 +35,8 @@ struct LiveCounters {
   std::uint64_t last_frame_steals = 0;
   double last_frame_ms = 0;  // wall time of the newest tessellation frame
   std::uint64_t driver_waits = 0;
-  std::uint64_t inconsistencies = 0;  // surface tessellations that failed their own audit
+  std::uint64_t inconsistencies = 0;    // surface tessellations that failed their own audit
+  std::uint64_t last_frame_remade = 0;  // surfaces the newest frame re-tessellated (the rest reused)
 };
 
 class LiveGreedy {
@@ -44,9 +45,10 @@ class LiveGreedy {
   // stealing/Paper, may run a surface twice, and a component's count-down would then swap it in torn).
   static std::vector<std::string> scheduler_names();
 
-  // Starts the driver thread; throws std::invalid_argument for an unknown scheduler or bad sizes.
+  // Starts the driver thread; throws std::invalid_argument for an unknown scheduler or bad sizes. `reuse`:
+  // unchanged surfaces keep their triangles (GreedySession).
   LiveGreedy(const tess::Model& model, WorkerId tessellators, std::uint32_t slots, const std::string& scheduler,
-             const tess::TessellationSettings& settings);
+             const tess::TessellationSettings& settings, bool reuse = true);
   ~LiveGreedy();  // stops the driver; call stop_drawing() first, with the context current, if start_drawing() was
   LiveGreedy(const LiveGreedy&) = delete;
   LiveGreedy& operator=(const LiveGreedy&) = delete;

@@ -74,6 +74,10 @@ Options parse(int argc, char** argv) {
            "one thread: draw, then tessellate within the §5.3 budget 1/R - m*t_p");
   cli.flag("--null-renderer", o.greedy.null_renderer,
            "no OpenGL: count the triangles that would be drawn (CPU-only measurements)");
+  bool no_reuse = false;
+  cli.flag("--no-reuse", no_reuse,
+           "tessellate every surface every frame; by default a surface whose steps and trim polylines did not "
+           "change keeps its triangles (the same bytes), as the paper's renderer does");
   cli.out(o.out);
   cli.quiet(o.quiet);
   cli.parse(argc, argv);
@@ -82,6 +86,7 @@ Options parse(int argc, char** argv) {
     if (path == ts::name(k)) o.greedy.path = k;
   }
   std::tie(o.greedy.width, o.greedy.height) = report::parse_size(size);
+  o.greedy.reuse = !no_reuse;
   return o;
 }
 
@@ -100,6 +105,13 @@ report::Table summary_table(const rd::GreedyStats& st) {
              report::Cell::fixed(st.surfaces_per_second, 0), report::Cell::fixed(st.mean_lag, 2), st.max_lag,
              report::Cell::fixed(st.mean_triangles, 0), st.driver_waits, report::Cell::fixed(st.seconds, 2)});
   return t;
+}
+
+std::string remade_text(const rd::GreedyStats& st, std::size_t surfaces, bool reuse) {
+  const double per_frame =
+      static_cast<double>(st.surfaces_remade) / static_cast<double>(std::max<std::uint64_t>(st.tessellation_frames, 1));
+  return fixed_text(per_frame, 0) + " of " + std::to_string(surfaces) +
+         (reuse ? " (reuse on: the others kept their triangles)" : " (--no-reuse: every surface every frame)");
 }
 
 report::Table quality_table(const rd::GreedyStats& st) {
@@ -147,7 +159,9 @@ void write_results(const Options& o, const ts::Model& model, const rd::GreedySta
      << (o.greedy.display_rate > 0 ? fixed_text(o.greedy.display_rate, 1) + " updates/s"
                                    : std::string("as fast as possible"))
      << "\n- tessellation audit (trimmed pieces tiled exactly, (u, v) area = trim-loop area): "
-     << st.tessellation_inconsistencies << " failing surface tessellations\n\n"
+     << st.tessellation_inconsistencies << " failing surface tessellations"
+     << "\n- surfaces re-tessellated per tessellation frame: " << remade_text(st, model.surfaces.size(), o.greedy.reuse)
+     << "\n\n"
      << summary_table(st).markdown();
   if (!st.quality.empty()) {
     md << "\nLagging (what the pusher drew) against synchronized (every surface tessellated for that very view):\n\n"
@@ -169,6 +183,8 @@ void write_results(const Options& o, const ts::Model& model, const rd::GreedySta
   js["updates"] = st.updates;
   js["tessellation_frames"] = st.tessellation_frames;
   js["tessellation_inconsistencies"] = st.tessellation_inconsistencies;
+  js["reuse"] = o.greedy.reuse;
+  js["surfaces_remade"] = st.surfaces_remade;
   const report::Json summary = summary_table(st).json()[0];
   for (auto it = summary.begin(); it != summary.end(); ++it) js[it.key()] = it.value();
   js["quality"] = quality_table(st).json();

@@ -52,6 +52,10 @@ rd::ViewOptions parse(int argc, char** argv) {
       ->check(CLI::IsMember(rd::LiveGreedy::scheduler_names()));
   cli.flag("--synchronized", o.synchronized, "start synchronized (T toggles)");
   cli.flag("--no-overlay", no_overlay, "start with the overlay hidden (H toggles)");
+  bool no_reuse = false;
+  cli.flag("--no-reuse", no_reuse,
+           "tessellate every surface every frame; by default a surface whose steps and trim polylines did not "
+           "change keeps its triangles (the same bytes), as the paper's renderer does");
   cli.option("--rate", o.rate, "at most R frames per second; 0: as fast as it can")->check(CLI::Range(0.0, 10000.0));
   cli.option("--screenshot", o.screenshot, "where P writes the window (PNG); with --frames, also after the last frame");
   cli.option("--frames", o.frames, "exit after N frames (tests, screenshots); 0: run on")
@@ -59,6 +63,7 @@ rd::ViewOptions parse(int argc, char** argv) {
   cli.parse(argc, argv);  // --help: exit 0; a mistake: exit 2, as every frontsteal command
   std::tie(o.width, o.height) = report::parse_size(size);
   o.overlay = !no_overlay;
+  o.reuse = !no_reuse;
   return o;
 }
 

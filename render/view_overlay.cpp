@@ -40,6 +40,8 @@ OverlaySize draw_overlay(const OverlayText& text, const LiveGreedy& live, const 
               static_cast<unsigned long long>(rec.triangles));
   ImGui::Text("tessellation %.1f frames/s   (last %.1f ms%s)", rates.frames_per_s, c.last_frame_ms,
               rates.frames_per_s == 0 && rec.max_lag == 0 ? ", idle: the view is unchanged" : "");
+  ImGui::Text("remade      %llu surfaces last frame (the rest reused)",
+              static_cast<unsigned long long>(c.last_frame_remade));
   ImGui::Text("lag         mean %.2f, max %d updates", rec.mean_lag, rec.max_lag);
   ImGui::Text("steals      %.1f per frame (last frame %llu)", rates.steals_per_frame,
               static_cast<unsigned long long>(c.last_frame_steals));

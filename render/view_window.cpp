@@ -174,7 +174,7 @@ int run_view(const tess::Model& model, const ViewOptions& o, const volatile std:
   {
     tess::TessellationSettings settings;
     settings.pixel_tolerance = o.tolerance;
-    LiveGreedy live(model, o.tessellators, 3, o.scheduler, settings);
+    LiveGreedy live(model, o.tessellators, 3, o.scheduler, settings, o.reuse);
     live.set_synchronized(o.synchronized);
     ViewControls controls(tess::model_box(model), live);
     controls.overlay = o.overlay;

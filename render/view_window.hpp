@@ -21,6 +21,7 @@ struct ViewOptions {
   double rate = 60;        // frames per second at most; 0: unpaced (the display's refresh where there is one)
   std::string screenshot;  // P writes here (else frontsteal-view-NNNN.png); with frames, also after the last
   int frames = 0;          // exit after this many frames; 0: run until closed
+  bool reuse = true;       // unchanged surfaces keep their triangles (tessellate/surface_reuse.hpp)
 };
 
 // Runs the viewer until the window is closed, Escape, `options.frames` or `interrupted` becomes non-zero (a

@@ -10,14 +10,38 @@ FrameWorkload::FrameWorkload(PathScene& scene, WorkerId workers)
       scratch_(std::max<WorkerId>(1, workers)),
       triangles_(scene.surfaces(), 0),
       inconsistent_(scene.surfaces(), 0),
-      capped_(scene.surfaces(), 0) {}
+      capped_(scene.surfaces(), 0),
+      remade_(scene.surfaces(), 0) {}
 
 void FrameWorkload::prepare_workers(WorkerId workers) {
   if (scratch_.size() < workers) scratch_.resize(workers);
 }
 
+void FrameWorkload::set_reuse(bool on) {
+  reuse_ = on;
+  kept_.assign(on ? scene_->surfaces() : 0, KeptTessellation{});
+}
+
+void FrameWorkload::prime(int first) {
+  if (!reuse_) return;
+  if (first <= 0) {
+    for (KeptTessellation& k : kept_) k.forget();
+    return;
+  }
+  for (ItemId id = 0; id < surfaces(); ++id) run(first - 1, id, 0);
+}
+
 SurfaceResult FrameWorkload::run(int f, ItemId id, WorkerId w) {
-  const SurfaceResult r = scene_->tessellate(f, id, scratch_[w]);
+  SurfaceResult r;
+  if (reuse_) {
+    const ReuseOutcome o = tessellate_or_reuse(scene_->prepared[id], scene_->cameras[f], scene_->frusta[f],
+                                               scene_->settings, scratch_[w], scene_->buffers[id], kept_[id]);
+    r = o.result;
+    remade_[id] = o.remade;
+  } else {
+    r = scene_->tessellate(f, id, scratch_[w]);
+    remade_[id] = 1;
+  }
   triangles_[id] = r.triangles;
   inconsistent_[id] = r.inconsistencies() > 0;
   capped_[id] = r.capped;

@@ -56,6 +56,7 @@ Options parse_options(int argc, char** argv) {
       ->type_name("D")
       ->check(CLI::IsMember({"wave1-bridge", "drop-ear"}));
   cli.flag("--pin", o.pin, "pin thread t to the t-th allowed CPU");
+  cli.flag("--reuse", o.reuse, "frame-to-frame reuse of unchanged surfaces, as frontsteal --reuse");
   cli.option("--schedule", o.schedule,
              "static-steal, or the probe's negative controls monotonic-dynamic and static, which must make it fail")
       ->type_name("S")

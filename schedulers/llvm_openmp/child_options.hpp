@@ -24,6 +24,7 @@ struct Options {
   int grain = 1;
   ts::PlantedDefect defect = ts::PlantedDefect::none;
   bool pin = false;
+  bool reuse = false;                     // frame-to-frame reuse (tessellate/surface_reuse.hpp), as frontsteal --reuse
   std::string schedule = "static-steal";  // static-steal | monotonic-dynamic | static (negative controls)
   enum class Fault { none, drop, dup } fault = Fault::none;
   int fault_item = -1;

@@ -142,6 +142,7 @@ int main(int argc, char** argv) {
       std::cout << "error unknown command '" << line << "'" << std::endl;
       return 2;
     }
+    frames->prime(first);  // with reuse: the state frontsteal's other arms start this segment from
     for (int f = first; f < last; ++f) std::cout << frames->frame_line(f) << '\n';
     settle();
     std::cout << "end" << std::endl;

@@ -41,6 +41,7 @@ StaticStealFrames::StaticStealFrames(const Options& o) : o_(o) {
   grain_ = o.grain;
   chunks_ = (n_ + grain_ - 1) / grain_;
   frames_.emplace(scene_, static_cast<frontsteal::WorkerId>(o.workers));
+  frames_->set_reuse(o.reuse);
   runs_ = std::vector<std::atomic<std::uint32_t>>(static_cast<std::size_t>(n_));
   runner_.assign(static_cast<std::size_t>(n_), -1);
   workers_.resize(static_cast<std::size_t>(o.workers));

@@ -38,6 +38,9 @@ class StaticStealFrames {
   //   <chunks_stolen> <items_stolen>} x P <runs>
   // with <runs> the per-item execution counts, run-length encoded ("count*length,..."), then reset.
   std::string frame_line(int f);
+  // With --reuse: the kept tessellations as after frame first − 1 (nothing kept for first = 0), so a segment
+  // starting at `first` costs what it costs in frontsteal's in-process arms. Untimed; no-op without reuse.
+  void prime(int first) { frames_->prime(first); }
 
  private:
   struct alignas(64) Worker {

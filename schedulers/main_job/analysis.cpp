@@ -65,6 +65,19 @@ std::string shown_path(const std::string& path) {
   return rel.string();
 }
 
+// Surfaces re-tessellated per frame in the serial warm-up pass: with --reuse the frame's real work, without it
+// every surface every frame.
+std::string remade_line(const Options& o, const Workload& wl) {
+  const std::size_t n = wl.prepared.size();
+  std::uint64_t total = 0, lo = n, hi = 0;
+  for (const std::uint64_t r : wl.serial_remade) total += r, lo = std::min<std::uint64_t>(lo, r), hi = std::max(hi, r);
+  const double mean = wl.serial_remade.empty() ? 0.0 : static_cast<double>(total) / wl.serial_remade.size();
+  if (!o.reuse) return "surfaces re-tessellated per frame: all " + std::to_string(n) + " (no --reuse)";
+  return "surfaces re-tessellated per frame (--reuse; the serial pass along the path): mean " + fixed(mean, 0) +
+         " of " + std::to_string(n) + " (" + fixed(100.0 * mean / std::max<std::size_t>(n, 1), 1) + " %), " +
+         std::to_string(lo) + " to " + std::to_string(hi) + " (frame 0 makes every surface)";
+}
+
 std::string instances_text(const Options& o) {
   if (o.instance_frames <= 0) return "one instance of each scheduler for the whole run";
   return "a fresh instance of each scheduler every " + std::to_string(o.instance_frames) +
@@ -471,6 +484,7 @@ void summary_lines(const Measured& m, Analysis& a) {
         << m.wl.settings.max_steps << "-step cap (deviation may exceed " << o.tolerance
         << " px there): " << a.capped_total << " surface-frames, at most " << a.capped_max << " per frame";
   a.tessellation_audit = audit.str();
+  a.remade = remade_line(o, m.wl);
   std::ostringstream child;  // how openmp-static-steal ran, and the proof that static_steal was in effect
   for (const Cell& c : m.cells) {
     if (c.child) {

@@ -86,7 +86,7 @@ struct Analysis {
   double co_runner_core_share = 0;
   std::uint64_t serial_inconsistencies = 0, capped_total = 0, capped_max = 0;
   std::string machine, path_line, spread_line, noise_line, spread_summary, interference_line, warning,
-      tessellation_audit, child_note;
+      tessellation_audit, remade, child_note;
 };
 
 // Per frame, the median over repeats.

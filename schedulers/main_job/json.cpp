@@ -119,6 +119,8 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
                   {"triangles_per_frame", m.wl.serial_triangles},
                   {"inconsistent_surfaces_per_frame", m.wl.serial_inconsistencies},
                   {"capped_surfaces_per_frame", m.wl.serial_capped},
+                  {"reuse", o.reuse},
+                  {"remade_surfaces_per_frame", m.wl.serial_remade},
                   {"max_steps", m.wl.settings.max_steps},
                   {"frame_ms_median", frame_medians(m.serial_frame_ms, o.frames)}};
   const Json rows = data.json();  // [0] is the serial loop, already under "serial"

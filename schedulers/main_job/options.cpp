@@ -219,6 +219,12 @@ Options parse_options(int argc, char** argv) {
            "on these VMs the two vCPUs run at different speeds, and unpinned arms land on either, "
            "which widened the paired intervals 1.6-fold here)");
   cli.flag("--no-pin", no_pin, "leave every thread where the OS puts it");
+  cli.flag("--reuse", o.reuse,
+           "frame-to-frame reuse, as the paper's renderer does: a surface whose steps and trim polylines did not "
+           "change since the frame before keeps its triangles (identical to recomputing them, audited when "
+           "made), so a frame's work is the surfaces whose steps changed; the report gives the surfaces "
+           "re-tessellated per frame. Every arm starts each round from the same kept state (the frame before "
+           "the round's, run untimed). Default off: every surface every frame, the heavier load");
   std::string interference;
   cli.option("--interference", interference,
              "a co-runner child process busy-loops DUTY % (1-100, default 50) of each 10 ms on one core while the "

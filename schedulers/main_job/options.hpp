@@ -45,6 +45,7 @@ struct Options {
   bool calibrate = false;  // add the calibration arms (A/A twin, planted slowdowns)
   std::string calibrate_base = "queue-mutex";
   bool pin = true;
+  bool reuse = false;  // frame-to-frame reuse of unchanged surfaces (tessellate/surface_reuse.hpp)
   nz::Thresholds noise;
   double tolerance = 1.0;
   ItemId grain = 0;

@@ -93,6 +93,7 @@ std::string markdown_report(const Measured& m, const Analysis& a, const std::str
      << a.spread_summary << "\n```\n\n"
      << table << '\n'
      << a.child_note << (a.child_note.empty() ? "" : "\n") << a.tessellation_audit << ".\n\n"
+     << a.remade << ".\n\n"
      << a.spread_line << ".\n\n"
      << a.noise_line << ".\n"
      << (a.calibration.empty() ? "" : "\n" + calibration_text(a));
@@ -125,6 +126,7 @@ int write_results(const Measured& m, double elapsed_s) {
   const std::string table = shown_table(m, a).markdown();
   std::cout << terminal_heading(m, a) << table << '\n'
             << a.child_note << a.tessellation_audit << '\n'
+            << a.remade << '\n'
             << a.spread_line << '\n'
             << a.noise_line << '\n';
   if (!a.calibration.empty()) std::cout << '\n' << calibration_text(a);

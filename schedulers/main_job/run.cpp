@@ -56,6 +56,7 @@ sc::ChildWorkload child_workload(const Options& o) {
                     : o.planted_defect == ts::PlantedDefect::bridge_to_first_copy ? "wave1-bridge"
                                                                                   : "";
   cw.pin = o.pin;
+  if (o.reuse) cw.extra_args.push_back("--reuse");
   return cw;
 }
 
@@ -275,6 +276,7 @@ void Measurement::run_serial_segment(std::size_t round, int segment, double prob
   const auto n = static_cast<ItemId>(wl_.model.surfaces.size());
   const auto [first, last] = segment_frames(o_, segment);
   pin_as(0);
+  tess_.prime(first);  // --reuse: the same kept state for every arm of the round (untimed)
   co_runner_.pause();  // T1 is the undisturbed reference (no-op without --interference)
   const nz::ProcSample before = sample();
   const nz::PassMeter meter;
@@ -301,6 +303,7 @@ void Measurement::run_serial_segment(std::size_t round, int segment, double prob
 void Measurement::run_cell_segment(Cell& c, std::size_t round, int segment, double probe) {
   if (c.child) return run_child_segment(c, round, segment, probe);
   const auto [first, last] = segment_frames(o_, segment);
+  tess_.prime(first);  // --reuse: the same kept state for every arm of the round (untimed)
   double total = 0, planted_total = 0;
   const nz::ProcSample before = sample();
   for (int f = first; f < last; ++f) {

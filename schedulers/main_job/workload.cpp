@@ -61,6 +61,7 @@ WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess) {
           wl.prepared[id], ts::plan_surface(wl.prepared[id], wl.cameras[f], wl.frusta[f], wl.settings), wl.settings);
     }
   }
+  tess.set_reuse(o.reuse);
   const auto warm_start = std::chrono::steady_clock::now();
   for (int f = 0; f < o.frames; ++f) {
     for (fs::ItemId id = 0; id < n; ++id) {
@@ -72,6 +73,7 @@ WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess) {
     wl.serial_triangles.push_back(tess.frame_triangles());
     wl.serial_inconsistencies.push_back(tess.count_inconsistent());
     wl.serial_capped.push_back(tess.count_capped());
+    wl.serial_remade.push_back(tess.count_remade());
     if (wl.serial_inconsistencies.back() > 0) {
       std::cerr << kProgram << ": frame " << f << ": " << wl.serial_inconsistencies.back()
                 << " surfaces fail the tessellation audit (first: " << tess.first_inconsistent() << ")\n";

@@ -26,6 +26,7 @@ struct Workload : ts::PathScene {
   std::vector<std::uint64_t> serial_triangles;        // per frame, from the serial loop: the reference
   std::vector<std::uint64_t> serial_inconsistencies;  // per frame: surfaces whose tessellation audit failed
   std::vector<std::uint64_t> serial_capped;           // per frame: surfaces held at the step cap
+  std::vector<std::uint64_t> serial_remade;           // per frame: surfaces re-tessellated (all without --reuse)
 };
 
 struct PreparedScene {
