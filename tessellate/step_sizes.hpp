@@ -5,8 +5,13 @@
 // interpolant is at most
 //     (1/8) (δu² M_uu + 2 δu δv M_uv + δv² M_vv),
 // with M_uu ≤ m(m−1) max‖Δ_uu P‖, M_uv ≤ m n max‖Δ_uv P‖, M_vv ≤ n(n−1) max‖Δ_vv P‖ (second differences of
-// the control net; m, n the degrees). Since 2ab ≤ a² + b², giving each direction half the tolerance ε:
-//     n_u = ⌈ sqrt((M_uu + M_uv) / (4ε)) ⌉,   n_v = ⌈ sqrt((M_vv + M_uv) / (4ε)) ⌉.
+// the control net; m, n the degrees). The steps with the fewest cells n_u·n_v that meet (1/8)(…) ≤ ε: with
+// s = √(M_uu / M_vv), δu/δv = 1/s balances the two squares (A a² + C b² ≥ 2√(AC) ab, equality at A a² = C b²) and
+//     n_u = ⌈ sqrt((M_uu + M_uv·s) / (4ε)) ⌉,   n_v = ⌈ sqrt((M_vv + M_uv/s) / (4ε)) ⌉,
+// which meet the bound exactly before rounding up (substitute: each square gives 4ε·M/(M + M_uv·…) and the
+// mixed term the rest). Where M_uu or M_vv is 0 (a straight direction) the even split is kept:
+//     n_u = ⌈ sqrt((M_uu + M_uv) / (4ε)) ⌉,   n_v = ⌈ sqrt((M_vv + M_uv) / (4ε)) ⌉
+// (2ab ≤ a² + b²: each direction gets half the tolerance).
 // The M's must bound the second derivatives of the *surface*. For a rational patch S = X / W (X the weighted
 // points, W the weight, both polynomial) they follow from the quotient rule, with the origin moved to the
 // centre c of the control net's bounding box so that ‖S‖ ≤ R = max‖P_ij − c‖ (convex hull, weights > 0):
@@ -109,6 +114,10 @@ inline StepSizes deviation_steps(const NetBounds& b, double epsilon, int max_ste
     const double n = std::ceil(std::sqrt(m / (4.0 * epsilon)));
     return static_cast<int>(std::clamp(n, 1.0, static_cast<double>(max_steps)));
   };
+  if (b.m_uu > 0 && b.m_vv > 0) {
+    const double s = std::sqrt(b.m_uu / b.m_vv);
+    return {steps(b.m_uu + b.m_uv * s), steps(b.m_vv + b.m_uv / s)};
+  }
   return {steps(b.m_uu + b.m_uv), steps(b.m_vv + b.m_uv)};
 }
 

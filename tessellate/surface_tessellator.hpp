@@ -8,6 +8,9 @@
 //      control box (at least the near plane), every point of the patch and of its triangles is at depth ≥ d_min,
 //      so ε_obj = ε_px · d_min / (f_px · k), k = √(1 + tan²(fovx/2) + tan²(fovy/2)), keeps the screen deviation
 //      within ε_px (the plain ε_px·d_min/f_px of the literature ignores k, up to 1.5 at the image corners).
+//      The same stretch is (f_px / z)·|p| / z with |p| the distance from the eye, so over the control box
+//      (|p| ≤ r_max, the farthest corner; z ≥ d_min) k may be r_max / d_min instead where that is smaller: a
+//      small patch near the view axis gets k ≈ 1, not the image corner's factor.
 //      The same conversion turns the size bound (edges ≤ max_edge_pixels) into an object length.
 //   3. Step sizes n_u, n_v (step_sizes.hpp): the larger of the deviation bound (Filip et al.) and the size
 //      bound, clamped to max_steps. The deviation bound holds for every triangle whose vertices lie in one grid
@@ -151,11 +154,17 @@ inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, 
     return plan;
   }
   const glm::dvec3 forward = camera.forward();
-  double d_min = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 8; ++k) d_min = std::min(d_min, glm::dot(s.box.corner(k) - camera.eye, forward));
+  double d_min = std::numeric_limits<double>::infinity(), r_max = 0;
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 c = s.box.corner(k) - camera.eye;
+    d_min = std::min(d_min, glm::dot(c, forward));
+    r_max = std::max(r_max, glm::length(c));
+  }
   d_min = std::max(d_min, camera.near_plane);
   const double tx = camera.tan_half_fovx(), ty = camera.tan_half_fovy();
-  const double object_per_pixel = d_min / (camera.focal_pixels() * std::sqrt(1.0 + tx * tx + ty * ty));
+  // The perspective factor k of step 2: the smaller of the frustum's and the box's own (|p| / z ≤ r_max / d_min).
+  const double k = std::clamp(r_max / d_min, 1.0, std::sqrt(1.0 + tx * tx + ty * ty));
+  const double object_per_pixel = d_min / (camera.focal_pixels() * k);
   plan.epsilon = settings.pixel_tolerance * object_per_pixel;
   plan.edge_length = settings.max_edge_pixels * object_per_pixel;
   const StepSizes d = deviation_steps(s.bounds, plan.epsilon, settings.max_steps + 1);

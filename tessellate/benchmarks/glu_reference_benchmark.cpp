@@ -287,7 +287,7 @@ BENCHMARK(BM_ours_untrimmed_teapot_float)->Arg(4)->Arg(16)->Arg(64);
 BENCHMARK(BM_glu_untrimmed_teapot)->Arg(4)->Arg(16)->Arg(64);
 BENCHMARK(BM_ours_trimmed_hole)->Arg(8)->Arg(32)->Arg(128);
 BENCHMARK(BM_glu_trimmed_hole)->Arg(8)->Arg(32)->Arg(128);
-BENCHMARK(BM_ours_teapot_at_pixel_tolerance)->Arg(2)->Arg(4);
-BENCHMARK(BM_glu_teapot_at_pixel_tolerance)->Arg(2)->Arg(4);
+BENCHMARK(BM_ours_teapot_at_pixel_tolerance)->Arg(2)->Arg(4)->Arg(8);
+BENCHMARK(BM_glu_teapot_at_pixel_tolerance)->Arg(2)->Arg(4)->Arg(8);
 
 BENCHMARK_MAIN();
