@@ -231,8 +231,12 @@ struct SurfaceResult {
 
 // Per-worker scratch: everything a surface's tessellation needs, reused across surfaces and frames.
 struct TessellationScratch {
-  std::vector<BernsteinTable> u_basis, v_basis;
-  std::pair<int, int> u_basis_for{-1, -1}, v_basis_for{-1, -1};  // (degree, steps) the tables were made for
+  // The trimmed path's grid-line tables, kept while consecutive trimmed surfaces share (degree, steps): only
+  // tessellate_trimmed writes them (the untrimmed double grid has its own `grid_basis`), so no other use of the
+  // scratch can leave them stale.
+  std::vector<BernsteinTable> trim_u_basis, trim_v_basis;
+  std::pair<int, int> trim_u_basis_for{-1, -1}, trim_v_basis_for{-1, -1};  // (degree, steps) they were made for
+  std::vector<BernsteinTable> grid_basis;                                  // tessellate_untrimmed's scratch
   std::vector<double> u_lines, v_lines;
   std::vector<Polygon2> loops;
   GridTrimmer trimmer;
@@ -302,15 +306,15 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
   lap.to(Phase::trace);
 
   // The grid lines' basis tables depend only on (degree, steps); kept while consecutive surfaces share them.
-  if (scratch.u_basis_for != std::pair(patch.degree_u, nu)) {
-    scratch.u_basis.resize(static_cast<std::size_t>(nu + 1));
-    for (int i = 0; i <= nu; ++i) scratch.u_basis[i] = bernstein(patch.degree_u, scratch.u_lines[i]);
-    scratch.u_basis_for = {patch.degree_u, nu};
+  if (scratch.trim_u_basis_for != std::pair(patch.degree_u, nu)) {
+    scratch.trim_u_basis.resize(static_cast<std::size_t>(nu + 1));
+    for (int i = 0; i <= nu; ++i) scratch.trim_u_basis[i] = bernstein(patch.degree_u, scratch.u_lines[i]);
+    scratch.trim_u_basis_for = {patch.degree_u, nu};
   }
-  if (scratch.v_basis_for != std::pair(patch.degree_v, nv)) {
-    scratch.v_basis.resize(static_cast<std::size_t>(nv + 1));
-    for (int j = 0; j <= nv; ++j) scratch.v_basis[j] = bernstein(patch.degree_v, scratch.v_lines[j]);
-    scratch.v_basis_for = {patch.degree_v, nv};
+  if (scratch.trim_v_basis_for != std::pair(patch.degree_v, nv)) {
+    scratch.trim_v_basis.resize(static_cast<std::size_t>(nv + 1));
+    for (int j = 0; j <= nv; ++j) scratch.trim_v_basis[j] = bernstein(patch.degree_v, scratch.v_lines[j]);
+    scratch.trim_v_basis_for = {patch.degree_v, nv};
   }
   scratch.corner_vertex.assign(static_cast<std::size_t>((nu + 1) * (nv + 1)), TessellationScratch::kNone);
   scratch.trim_vertex.assign(trimmer.points().size(), TessellationScratch::kNone);
@@ -322,7 +326,7 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
   const auto grid_row = [&](int i) -> const RowCurve& {
     const int slot = i & 1;
     if (cached_row[slot] != i) {
-      rows[slot].collapse(patch, scratch.u_basis[i]);
+      rows[slot].collapse(patch, scratch.trim_u_basis[i]);
       cached_row[slot] = i;
     }
     return rows[slot];
@@ -334,7 +338,7 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
       if (slot == TessellationScratch::kNone) {
         const int i = static_cast<int>(k / static_cast<std::uint32_t>(nv + 1));
         const int j = static_cast<int>(k % static_cast<std::uint32_t>(nv + 1));
-        SurfacePoint sp = grid_row(i).at(patch.degree_v, scratch.v_basis[j]);
+        SurfacePoint sp = grid_row(i).at(patch.degree_v, scratch.trim_v_basis[j]);
         if (sp.normal == glm::dvec3(0.0)) sp.normal = evaluate(patch, scratch.u_lines[i], scratch.v_lines[j]).normal;
         slot = out.add_vertex(sp, scratch.u_lines[i], scratch.v_lines[j]);
       }
@@ -438,8 +442,7 @@ inline SurfaceResult tessellate_planned(const PreparedSurface& s, const SurfaceP
   if (plan.single_precision) {
     tessellate_untrimmed_float(s.surface->patch, plan.steps, out, scratch.float_grid);
   } else {
-    tessellate_untrimmed(s.surface->patch, plan.steps, out, scratch.v_basis);
-    scratch.v_basis_for = {-1, -1};  // overwritten: the trimmed path must make its tables again
+    tessellate_untrimmed(s.surface->patch, plan.steps, out, scratch.grid_basis);
   }
   lap.to(Phase::untrimmed_grid);
   SurfaceResult r;

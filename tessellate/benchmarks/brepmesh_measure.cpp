@@ -244,14 +244,7 @@ std::vector<Row> compare_file(const Options& o, const std::string& original, con
         const ts::StepSizes d = ts::deviation_steps(s.bounds, eps, o.max_steps + 1);
         plan.capped = d.n_u > o.max_steps || d.n_v > o.max_steps;
         plan.steps = {std::min(d.n_u, o.max_steps), std::min(d.n_v, o.max_steps)};
-        if (s.trimmed()) {
-          results[k] = ts::tessellate_trimmed(s, plan, settings, scratch, buffers[k]);
-        } else {
-          ts::tessellate_untrimmed(s.surface->patch, plan.steps, buffers[k], scratch.v_basis);
-          results[k] = {};
-          results[k].capped = plan.capped;
-          results[k].triangles = static_cast<std::uint32_t>(buffers[k].triangle_count());
-        }
+        results[k] = ts::tessellate_planned(s, plan, settings, scratch, buffers[k]);  // double precision
       }
     });
     for (std::size_t k = 0; k < prepared.size(); ++k) {

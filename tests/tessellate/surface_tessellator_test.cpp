@@ -501,3 +501,31 @@ TEST_CASE("the cost estimate grows with screen size and trimming, and is small w
   CHECK(culled.culled == ts::Culled::frustum);
   CHECK(ts::estimate_cost(p_plain, culled, settings) < 0.1 * cost_from(p_plain, 2.0));
 }
+
+TEST_CASE("one scratch through a mix of surfaces gives the bytes a fresh scratch gives", "[tessellate]") {
+  // The trimmed path keeps grid-line tables while (degree, steps) repeat; untrimmed grids (double and float) and
+  // trimmed surfaces of other degrees and steps in between must never leave them stale.
+  std::mt19937_64 rng(21);
+  ts::TessellationScratch shared;
+  ts::TriangleBuffers out, fresh_out;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int du = 1 + trial % 4, dv = 1 + (trial / 3) % 4;
+    const bool trimmed = trial % 3 != 1;
+    ts::Surface s = trimmed ? trimmed_random_surface(rng, du, dv, trial % 5 == 0)
+                            : ts::Surface{"", random_patch(rng, du, dv, false), {}, -1, false};
+    const ts::PreparedSurface prepared = ts::prepare_surface(s);
+    ts::TessellationSettings settings;
+    ts::SurfacePlan plan;
+    plan.epsilon = 1e-3;
+    plan.edge_length = 1e9;
+    plan.steps = {2 + trial % 5, 2 + (trial / 2) % 5};  // steps repeat, degrees change between them
+    plan.single_precision = trial % 2 == 0;
+    ts::TessellationScratch fresh;
+    ts::tessellate_planned(prepared, plan, settings, shared, out);
+    ts::tessellate_planned(prepared, plan, settings, fresh, fresh_out);
+    INFO("trial " << trial << ": degree " << du << "x" << dv << (trimmed ? " trimmed" : "") << ", steps "
+                  << plan.steps.n_u << "x" << plan.steps.n_v);
+    CHECK(out.positions == fresh_out.positions);
+    CHECK(out.indices == fresh_out.indices);
+  }
+}
