@@ -63,7 +63,6 @@ class GreedySession {
   std::uint64_t inconsistencies() const noexcept { return inconsistencies_.load(std::memory_order::relaxed); }
   // Surfaces actually tessellated (not reused) so far.
   std::uint64_t remade() const noexcept { return remade_.load(std::memory_order::relaxed); }
-  bool reuse() const noexcept { return !kept_.empty(); }
 
  private:
   const tess::Model& model_;
