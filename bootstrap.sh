@@ -17,8 +17,9 @@ packages=(
   spin
   # ThreadSanitizer runtime for g++ 12 (stress/)
   libtsan2
-  # vector and matrix math for the tessellation workload (tessellate/)
-  libglm-dev
+  # vector and matrix math for the tessellation workload (tessellate/), and CGAL's constrained triangulation
+  # for its large trimmed pieces (tessellate/constrained_triangulation.cpp; header-only, brings GMP and MPFR)
+  libglm-dev libcgal-dev
   # the GLU NURBS tessellator: the reference in tessellate/benchmarks/glu_reference_benchmark
   libglu1-mesa-dev
   # the parser's fuzz target (tessellate/fuzz/, `cmake --workflow --preset fuzz`)

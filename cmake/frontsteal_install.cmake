@@ -10,8 +10,8 @@
 # Only these six targets are exported. Executables, the CAD importer (Open CASCADE), the renderer (EGL, GL)
 # and the test libraries stay in the build tree, so none of their dependencies reach a consumer: the export
 # needs Threads, TBB and OpenMP (linked privately into the static frontsteal::schedulers, so they appear as
-# link-only dependencies), glm (frontsteal::tessellate's public headers), nlohmann_json and CLI11
-# (frontsteal::reporting's public headers).
+# link-only dependencies), glm (frontsteal::tessellate's public headers), CGAL (linked privately into the static
+# frontsteal::tessellate: link-only), nlohmann_json and CLI11 (frontsteal::reporting's public headers).
 include(CMakePackageConfigHelpers)
 
 set(FRONTSTEAL_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/frontsteal)

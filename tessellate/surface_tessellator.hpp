@@ -22,8 +22,9 @@
 //      cross add the vertices the surface needs).
 //   5. Untrimmed: the uniform grid (grid_tessellator.hpp). Trimmed: the grid cut by the trim polylines
 //      (trim_region.hpp); full cells give two triangles split by the diagonal, partial cells are ear-clipped
-//      (polygon_triangulation.hpp). Grid corners and trim points each become one vertex, shared by every
-//      triangle that uses them, so there are no cracks inside a patch.
+//      (polygon_triangulation.hpp), except large pieces (a long trim polyline in one cell), which get a
+//      constrained triangulation (constrained_triangulation.hpp: ear clipping is quadratic). Grid corners and trim
+//      points each become one vertex, shared by every triangle that uses them, so there are no cracks inside a patch.
 //   6. Every trimmed surface audits itself (SurfaceResult): each piece's triangles must tile the piece exactly
 //      (tiling_audit.hpp: no overlap, no covered hole, no gap), every piece must lie in its cell (so pieces of
 //      different cells cannot overlap), and the triangles' (u, v) area must equal the area enclosed by this
@@ -46,6 +47,7 @@
 
 #include "tessellate/bezier_patch.hpp"
 #include "tessellate/camera.hpp"
+#include "tessellate/constrained_triangulation.hpp"
 #include "tessellate/culling.hpp"
 #include "tessellate/grid_tessellator.hpp"
 #include "tessellate/model.hpp"
@@ -220,11 +222,12 @@ struct SurfaceResult {
   std::uint32_t triangles = 0;
   std::uint32_t trim_points = 0;
   std::uint32_t partial_cells = 0;
-  std::uint32_t trace_failures = 0;     // trim input the region tracer could not place (crossing loops)
-  std::uint32_t tiling_violations = 0;  // pieces not tiled exactly by their triangles, or outside their cell
-  std::uint32_t area_mismatches = 0;    // 1 when the triangles' (u, v) area is not the trim polylines' area
-  double triangle_area = 0;             // (u, v) area of the emitted triangles (trimmed surfaces)
-  double trimmed_area = 0;              // (u, v) area enclosed by this frame's trim polylines (shoelace)
+  std::uint32_t constrained_pieces = 0;  // pieces triangulated by constrained_triangulation.hpp, not ear clipping
+  std::uint32_t trace_failures = 0;      // trim input the region tracer could not place (crossing loops)
+  std::uint32_t tiling_violations = 0;   // pieces not tiled exactly by their triangles, or outside their cell
+  std::uint32_t area_mismatches = 0;     // 1 when the triangles' (u, v) area is not the trim polylines' area
+  double triangle_area = 0;              // (u, v) area of the emitted triangles (trimmed surfaces)
+  double trimmed_area = 0;               // (u, v) area enclosed by this frame's trim polylines (shoelace)
   // Everything the per-surface audit (step 6) found wrong: 0 for a correct tessellation.
   std::uint32_t inconsistencies() const noexcept { return trace_failures + tiling_violations + area_mismatches; }
 };
@@ -383,17 +386,28 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
           const std::span<const TracedPiece> pieces = trimmer.trace(i, j);
           lap.to(Phase::trace);
           for (const TracedPiece& piece : pieces) {
-            scratch.ring = piece.outer;
-            if (!piece.holes.empty()) {
-              // Copied into rings that keep their capacity (assign() would free and reallocate them).
-              if (scratch.holes.size() < piece.holes.size()) scratch.holes.resize(piece.holes.size());
-              for (std::size_t h = 0; h < piece.holes.size(); ++h) scratch.holes[h] = piece.holes[h];
-              join_holes(scratch.ring, std::span<PolygonRing>(scratch.holes.data(), piece.holes.size()),
-                         settings.planted_defect == PlantedDefect::bridge_to_first_copy ? BridgeCopy::first_copy
-                                                                                        : BridgeCopy::sector);
-            }
             scratch.ring_triangles.clear();
-            clip_ears(scratch.ring, scratch.ring_triangles, scratch.next, scratch.prev);
+            std::size_t ring_vertices = piece.outer.size();
+            for (const PolygonRing& hole : piece.holes) ring_vertices += hole.size();
+            // A large piece (a long trim polyline in one cell) gets the constrained triangulation; the planted bridge
+            // defect belongs to ear clipping's hole joining, so a run that plants it keeps every piece there.
+            const bool constrained = ring_vertices >= kConstrainedTriangulationMinVertices &&
+                                     settings.planted_defect != PlantedDefect::bridge_to_first_copy &&
+                                     triangulate_constrained(piece.outer, piece.holes, scratch.ring_triangles);
+            if (constrained) {
+              ++result.constrained_pieces;
+            } else {
+              scratch.ring = piece.outer;
+              if (!piece.holes.empty()) {
+                // Copied into rings that keep their capacity (assign() would free and reallocate them).
+                if (scratch.holes.size() < piece.holes.size()) scratch.holes.resize(piece.holes.size());
+                for (std::size_t h = 0; h < piece.holes.size(); ++h) scratch.holes[h] = piece.holes[h];
+                join_holes(scratch.ring, std::span<PolygonRing>(scratch.holes.data(), piece.holes.size()),
+                           settings.planted_defect == PlantedDefect::bridge_to_first_copy ? BridgeCopy::first_copy
+                                                                                          : BridgeCopy::sector);
+              }
+              clip_ears(scratch.ring, scratch.ring_triangles, scratch.next, scratch.prev);
+            }
             if (settings.planted_defect == PlantedDefect::drop_ear && scratch.ring_triangles.size() > 3) {
               scratch.ring_triangles.erase(scratch.ring_triangles.begin(), scratch.ring_triangles.begin() + 3);
             }

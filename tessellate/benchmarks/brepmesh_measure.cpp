@@ -251,6 +251,8 @@ std::vector<Row> compare_file(const Options& o, const std::string& original, con
       row.our_triangles += results[k].triangles;
       row.capped += results[k].capped;
       row.inconsistencies += results[k].inconsistencies();
+      row.partial_cells += results[k].partial_cells;
+      row.constrained_pieces += results[k].constrained_pieces;
       row.trimmed += prepared[k].trimmed();
       measure_ours(prepared[k].surface->patch, buffers[k], row.our_dev);
     }

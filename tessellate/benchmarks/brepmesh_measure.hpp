@@ -49,6 +49,7 @@ struct Row {
   std::uint64_t our_triangles = 0;
   int capped = 0;
   std::uint64_t inconsistencies = 0;
+  std::uint64_t partial_cells = 0, constrained_pieces = 0;  // pieces too large for ear clipping (see the tessellator)
   Deviation our_dev;
   // BRepMesh
   Timing occt_serial, occt_parallel, occt_serial_imported;

@@ -68,10 +68,12 @@ void write_report(const Options& o, const std::vector<Row>& rows, const std::vec
     {
       notes << "- " << r.file << " at ε/diag " << fmt(r.eps_fraction) << ": largest edge tolerance "
             << fmt(r.edge_tolerance) << " (" << fmt(r.edge_tolerance / r.eps) << " ε); " << r.capped
-            << " surfaces held at the step cap, " << r.inconsistencies
-            << " audit inconsistencies, BRepMesh status flags " << r.occt_status << ", BRepMesh parallel triangles "
-            << r.occt_triangles_parallel << " (1T: " << r.occt_triangles << "), largest distance at a vertex: ours "
-            << fmt(r.our_dev.vertex_max) << ", BRepMesh " << fmt(r.occt_dev.vertex_max) << "\n";
+            << " surfaces held at the step cap, " << r.inconsistencies << " audit inconsistencies, "
+            << r.constrained_pieces << " pieces (of " << r.partial_cells
+            << " partial cells) by the constrained triangulation, BRepMesh status flags " << r.occt_status
+            << ", BRepMesh parallel triangles " << r.occt_triangles_parallel << " (1T: " << r.occt_triangles
+            << "), largest distance at a vertex: ours " << fmt(r.our_dev.vertex_max) << ", BRepMesh "
+            << fmt(r.occt_dev.vertex_max) << "\n";
     }
   }
   for (const std::string& m : missing) notes << "- missing, skipped: " << m << "\n";
@@ -143,10 +145,16 @@ void write_report(const Options& o, const std::vector<Row>& rows, const std::vec
     };
     report::Json out_rows = report::Json::array();
     for (const Row& r : rows) {
-      report::Json ours{{"ms", timing_json(r.ours)},    {"triangles", r.our_triangles},
-                        {"capped", r.capped},           {"inconsistencies", r.inconsistencies},
-                        {"dev_max", r.our_dev.max},     {"dev_mean", r.our_dev.mean()},
-                        {"samples", r.our_dev.samples}, {"vertex_residual_max", r.our_dev.vertex_max}};
+      report::Json ours{{"ms", timing_json(r.ours)},
+                        {"triangles", r.our_triangles},
+                        {"capped", r.capped},
+                        {"inconsistencies", r.inconsistencies},
+                        {"partial_cells", r.partial_cells},
+                        {"constrained_pieces", r.constrained_pieces},
+                        {"dev_max", r.our_dev.max},
+                        {"dev_mean", r.our_dev.mean()},
+                        {"samples", r.our_dev.samples},
+                        {"vertex_residual_max", r.our_dev.vertex_max}};
       report::Json occt{
           {"ms_1t", timing_json(r.occt_serial)},
           {"ms_parallel", timing_json(r.occt_parallel)},

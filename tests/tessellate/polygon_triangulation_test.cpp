@@ -10,26 +10,12 @@
 
 #include "tessellate/tiling_audit.hpp"
 #include "tests/tessellate/coverage_probe.hpp"
+#include "tests/tessellate/polygon_piece.hpp"
 
 namespace ts = frontsteal::tess;
 using namespace frontsteal::tess::testing;
 
 namespace {
-
-struct Piece {
-  ts::PolygonRing outer;
-  std::vector<ts::PolygonRing> holes;
-  std::vector<glm::dvec2> positions;  // by id
-};
-
-ts::PolygonRing ring_of(Piece& piece, const std::vector<glm::dvec2>& pts) {
-  ts::PolygonRing r;
-  for (const glm::dvec2& p : pts) {
-    r.push_back({p, static_cast<std::uint32_t>(piece.positions.size())});
-    piece.positions.push_back(p);
-  }
-  return r;
-}
 
 // The unit cell with `holes` disjoint random polygonal holes (clockwise, 3–12 vertices each).
 Piece cell_with_holes(std::mt19937_64& rng, int holes) {
@@ -77,14 +63,8 @@ Outcome triangulate_and_check(const Piece& piece, ts::BridgeCopy copy, std::mt19
   std::vector<std::array<glm::dvec2, 3>> corners;
   for (std::size_t t = 0; t < tris.size(); t += 3)
     corners.push_back({position(tris[t]), position(tris[t + 1]), position(tris[t + 2])});
-  std::vector<std::vector<glm::dvec2>> rings;
-  const auto plain = [](const ts::PolygonRing& r) {
-    std::vector<glm::dvec2> p;
-    for (const auto& v : r) p.push_back(v.uv);
-    return p;
-  };
-  rings.push_back(plain(piece.outer));
-  for (const auto& h : piece.holes) rings.push_back(plain(h));
+  std::vector<std::vector<glm::dvec2>> rings{ring_points(piece.outer)};
+  for (const auto& h : piece.holes) rings.push_back(ring_points(h));
   o.coverage = probe_coverage(corners, rings, {0, 0}, {1, 1}, rng, 400, 1e-9);
   return o;
 }

@@ -529,3 +529,43 @@ TEST_CASE("one scratch through a mix of surfaces gives the bytes a fresh scratch
     CHECK(out.indices == fresh_out.indices);
   }
 }
+
+TEST_CASE("long trim polylines in few cells: large pieces get the constrained triangulation, audited like the rest",
+          "[tessellate]") {
+  std::mt19937_64 rng(27);
+  ts::TessellationScratch scratch;
+  ts::TriangleBuffers tri;
+  ts::TessellationSettings settings;
+  settings.max_steps = 2;  // a 2×2 grid at most: each cell holds a quarter of each polyline
+  ts::Camera cam;
+  cam.eye = {0.5, 0.5, 2.0};
+  cam.target = {0.5, 0.5, 0.0};
+  cam.up = {0, 1, 0};
+  for (int trial = 0; trial < 10; ++trial) {
+    ts::Surface s{"", flat_plate(1.0), {}, -1, false};
+    const auto outer = random_star(rng, {0.5, 0.5}, 0.3, 0.49, 1600 + 400 * trial, true);
+    const auto hole = random_star(rng, {0.5, 0.5}, 0.08, 0.2, 1200, false);
+    s.loops = {polyline_loop(outer), polyline_loop(hole)};
+    const double exact = 0.5 * (ts::signed_area2(outer) + ts::signed_area2(hole));
+    const ts::PreparedSurface prepared = ts::prepare_surface(s);
+    settings.planted_defect = ts::PlantedDefect::none;
+    const ts::SurfaceResult r = ts::tessellate_surface(prepared, cam, ts::Frustum::of(cam), settings, scratch, tri);
+    double area = 0;
+    for (std::size_t t = 0; t < tri.indices.size(); t += 3) {
+      area +=
+          0.5 * ts::detail::cross2(tri.uvs[tri.indices[t]], tri.uvs[tri.indices[t + 1]], tri.uvs[tri.indices[t + 2]]);
+    }
+    INFO("trial " << trial << ": steps " << r.steps.n_u << "x" << r.steps.n_v << ", " << r.partial_cells
+                  << " partial cells, " << r.constrained_pieces << " pieces by the constrained triangulation, "
+                  << r.triangles << " triangles, area " << area << " vs " << exact);
+    CHECK(r.constrained_pieces > 0);
+    CHECK(r.inconsistencies() == 0);
+    CHECK(area == Approx(exact).margin(1e-5));
+    // Negative control: the planted defect drops each piece's first triangle, on this path as on ear clipping's.
+    settings.planted_defect = ts::PlantedDefect::drop_ear;
+    const ts::SurfaceResult planted =
+        ts::tessellate_surface(prepared, cam, ts::Frustum::of(cam), settings, scratch, tri);
+    CHECK(planted.constrained_pieces > 0);
+    CHECK(planted.tiling_violations > 0);
+  }
+}
