@@ -81,6 +81,12 @@ const std::vector<Subcommand>& subcommands() {
        "models_check",
        {},
        "Relacy: the Chase-Lev deque baseline"},
+      {"litmus",
+       "frontsteal-litmus",
+       "models_check/axiomatic",
+       {},
+       "axiomatic checker (RC11, C++ with load buffering, ARMv8) validated on published litmus verdicts; the "
+       "handshake per policy"},
       {"stress",
        "frontsteal-stress",
        "stress",

@@ -1,0 +1,198 @@
+// models.hpp — the consistency axioms of three memory models, written from the papers:
+//
+// RC11 (Lahav, Vafeiadis, Kang, Hur, Dreyer, "Repairing Sequential Consistency in C/C++11", PLDI 2017, §3):
+//   rs   = [W] ; po|loc? ; [W ⊒ rlx] ; (rf ; rmw)*                                      release sequence
+//   sw   = [E ⊒ rel] ; ([F] ; po)? ; rs ; rf ; [R ⊒ rlx] ; (po ; [F])? ; [E ⊒ acq]   synchronises-with
+//   hb   = (po ∪ sw)+          eco = (rf ∪ co ∪ fr)+          (co is the paper's mo, fr its rb)
+//   Coherence    hb ; eco? irreflexive
+//   Atomicity    rmw ∩ (fr ; co) = ∅
+//   SC           acyclic(psc_base ∪ psc_F), with
+//                scb = po ∪ po|≠loc ; hb ; po|≠loc ∪ hb|loc ∪ co ∪ fr
+//                psc_base = ([E^sc] ∪ [F^sc] ; hb?) ; scb ; ([E^sc] ∪ hb? ; [F^sc])
+//                psc_F    = [F^sc] ; (hb ∪ hb ; eco ; hb) ; [F^sc]
+//   No-thin-air  acyclic(po ∪ rf)
+// "RC11 without no-thin-air" drops the last axiom: C++ as the standard words it, where load buffering (LB) is
+// allowed. The initial writes are po-before every event here (they happen before the threads start).
+//
+// ARMv8 (Pulte, Flur, Deacon, French, Sarkar, Sewell, "Simplifying ARM Concurrency: Multicopy-atomic
+// Axiomatic and Operational Models for ARMv8", POPL 2018, the axiomatic model):
+//   Internal     acyclic(po-loc ∪ co ∪ fr ∪ rf)
+//   External     acyclic(ob), ob = (obs ∪ dob ∪ aob ∪ bob)+ with
+//                obs = rfe ∪ coe ∪ fre
+//                dob = data here (no address or control dependencies in these programs; a fetch_add's own
+//                      read-to-write dependency is rmw, in aob)
+//                aob = rmw ∪ [range(rmw)] ; rfi ; [A ∪ Q]
+//                bob = po ; [DMB.FULL] ; po ∪ [L] ; po ; [A] ∪ [R] ; po ; [DMB.LD] ; po ∪ [A ∪ Q] ; po
+//                      ∪ [W] ; po ; [DMB.ST] ; po ; [W] ∪ po ; [L] ∪ po ; [L] ; coi
+//   Atomic       rmw ∩ (fre ; coe) = ∅
+// where [R] in the DMB.LD clause leaves out the reads of ST<OP> instructions (program.hpp), A are the reads
+// of LDAR / LDADDA(L) / SWPA(L), Q those of LDAPR, L the writes of STLR / LDADD(A)L / STADDL / SWP(A)L. Initial writes
+// are in no thread: every rf, co or fr edge from or to one is external.
+//
+// Each model can be planted with a defect (ModelDefect) for the validation's negative control: a checker
+// counts only if the catalogue's verdicts catch a broken axiom.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "models_check/axiomatic/execution.hpp"
+
+namespace frontsteal::axiomatic {
+
+enum class Model : std::uint8_t { rc11, rc11_without_nta, armv8 };
+
+inline std::string_view name_of(Model m) {
+  switch (m) {
+    case Model::rc11: return "RC11";
+    case Model::rc11_without_nta: return "RC11 without no-thin-air (C++ with LB)";
+    case Model::armv8: return "ARMv8";
+  }
+  return "?";
+}
+
+enum class ModelDefect : std::uint8_t {
+  none,
+  rc11_eco_without_fr,        // eco = (rf ∪ co)+
+  rc11_sw_without_fences,     // sw without its ([F];po)? and (po;[F])? parts
+  armv8_internal_without_fr,  // acyclic(po-loc ∪ co ∪ rf)
+  armv8_bob_without_release,  // bob without po;[L]
+};
+
+namespace detail {
+
+inline EventSet events_where(const Execution& x, auto&& predicate) {
+  EventSet s = 0;
+  for (int e = 0; e < x.event_count; ++e) {
+    if (predicate(x.events[e])) s |= bit(e);
+  }
+  return s;
+}
+
+inline bool acquires(const Event& e) {
+  if (e.instruction == nullptr) return false;
+  const Order o = e.instruction->order;
+  if (e.kind == EventKind::write) return false;
+  return o == Order::acquire || o == Order::acq_rel || o == Order::seq_cst;
+}
+inline bool releases(const Event& e) {
+  if (e.instruction == nullptr) return false;
+  const Order o = e.instruction->order;
+  if (e.kind == EventKind::read) return false;
+  return o == Order::release || o == Order::acq_rel || o == Order::seq_cst;
+}
+inline bool seq_cst(const Event& e) { return e.instruction != nullptr && e.instruction->order == Order::seq_cst; }
+
+}  // namespace detail
+
+// RC11, with or without no-thin-air.
+inline bool rc11_consistent(const Execution& x, bool no_thin_air, ModelDefect defect = ModelDefect::none) {
+  const int n = x.event_count;
+  const EventSet all = x.all();
+  const Relation id = Relation::identity(n, all);
+  // The initial writes happen before everything a thread does.
+  const Relation po = x.po | Relation::product(n, x.initial, all & ~x.initial);
+  const Relation po_loc = po & x.same_location;
+  const Relation fr = x.fr();
+  const EventSet rel = detail::events_where(x, detail::releases);
+  const EventSet acq = detail::events_where(x, detail::acquires);
+  const EventSet sc = detail::events_where(x, detail::seq_cst);
+  const EventSet F = x.fences, R = x.reads, W = x.writes;
+
+  const Relation rs = po_loc.maybe().restrict(W, W).then(x.rf.then(x.rmw).star());
+  Relation sw(n);
+  if (defect == ModelDefect::rc11_sw_without_fences) {
+    sw = Relation::identity(n, rel).then(rs).then(x.rf).then(Relation::identity(n, R & acq));
+  } else {
+    const Relation fence_before = id | Relation::identity(n, F).then(po);
+    const Relation fence_after = id | po.then(Relation::identity(n, F));
+    sw = Relation::identity(n, rel)
+             .then(fence_before)
+             .then(rs)
+             .then(x.rf)
+             .then(Relation::identity(n, R))
+             .then(fence_after)
+             .then(Relation::identity(n, acq));
+  }
+  const Relation hb = (po | sw).plus();
+  const Relation eco = (defect == ModelDefect::rc11_eco_without_fr ? (x.rf | x.co) : (x.rf | x.co | fr)).plus();
+
+  if (!hb.then(eco.maybe()).irreflexive()) return false;  // coherence
+  if (!(x.rmw & fr.then(x.co)).empty()) return false;     // atomicity
+  const Relation po_other_loc = po.minus(x.same_location);
+  const Relation scb = po | po_other_loc.then(hb).then(po_other_loc) | (hb & x.same_location) | x.co | fr;
+  const Relation sc_id = Relation::identity(n, sc & ~F), scf_id = Relation::identity(n, sc & F);
+  const Relation psc_base = (sc_id | scf_id.then(hb.maybe())).then(scb).then(sc_id | hb.maybe().then(scf_id));
+  const Relation psc_f = scf_id.then(hb | hb.then(eco).then(hb)).then(scf_id);
+  if (!(psc_base | psc_f).acyclic()) return false;          // SC
+  if (no_thin_air && !(po | x.rf).acyclic()) return false;  // no-thin-air
+  return true;
+}
+
+// ARMv8's multicopy-atomic axiomatic model, on the instructions' ARMv8 view.
+inline bool armv8_consistent(const Execution& x, ModelDefect defect = ModelDefect::none) {
+  const int n = x.event_count;
+  const Relation po = x.po;  // initial writes are in no thread
+  const Relation po_loc = po & x.same_location;
+  const Relation fr = x.fr();
+  const Relation internal = x.internal(), external = x.external();
+
+  const Relation co_internal_check =
+      defect == ModelDefect::armv8_internal_without_fr ? (po_loc | x.co | x.rf) : (po_loc | x.co | fr | x.rf);
+  if (!co_internal_check.acyclic()) return false;  // internal visibility
+
+  const auto arm = [&](auto&& predicate) {
+    return detail::events_where(
+        x, [&](const Event& e) { return e.instruction != nullptr && predicate(*e.instruction, e); });
+  };
+  const EventSet A =
+      arm([](const Instruction& in, const Event& e) { return e.kind == EventKind::read && in.arm.acquire; });
+  const EventSet Q =
+      arm([](const Instruction& in, const Event& e) { return e.kind == EventKind::read && in.arm.acquire_pc; });
+  const EventSet L =
+      arm([](const Instruction& in, const Event& e) { return e.kind == EventKind::write && in.arm.release; });
+  const EventSet ordered_reads =
+      arm([](const Instruction& in, const Event& e) { return e.kind == EventKind::read && !in.arm.result_unused; });
+  const EventSet dmb_full = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::full; });
+  const EventSet dmb_ld = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::load; });
+  const EventSet dmb_st = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::store; });
+  const EventSet W = x.writes;
+
+  const Relation obs = (x.rf & external) | (x.co & external) | (fr & external);
+  Relation dob(n);  // data dependencies: the read of instruction data_from → the write that uses its value
+  for (int e = 0; e < n; ++e) {
+    const Event& ev = x.events[e];
+    if (ev.kind != EventKind::write || ev.instruction == nullptr || ev.instruction->data_from < 0) continue;
+    for (int r = 0; r < n; ++r) {
+      if (x.events[r].kind == EventKind::read && x.events[r].thread == ev.thread &&
+          x.events[r].index == ev.instruction->data_from) {
+        dob.add(r, e);
+      }
+    }
+  }
+  const Relation aob =
+      x.rmw | Relation::identity(n, x.rmw.range()).then(x.rf & internal).then(Relation::identity(n, A | Q));
+  Relation bob =
+      po.then(Relation::identity(n, dmb_full)).then(po) |
+      Relation::identity(n, L).then(po).then(Relation::identity(n, A)) |
+      Relation::identity(n, ordered_reads).then(po).then(Relation::identity(n, dmb_ld)).then(po) |
+      Relation::identity(n, A | Q).then(po) |
+      Relation::identity(n, W).then(po).then(Relation::identity(n, dmb_st)).then(po).then(Relation::identity(n, W));
+  if (defect != ModelDefect::armv8_bob_without_release) {
+    bob = bob | po.then(Relation::identity(n, L)) | po.then(Relation::identity(n, L)).then(x.co & internal);
+  }
+  if (!(obs | dob | aob | bob).acyclic()) return false;                        // external visibility
+  if (!(x.rmw & (fr & external).then(x.co & external)).empty()) return false;  // atomic
+  return true;
+}
+
+inline bool consistent(const Execution& x, Model m, ModelDefect defect = ModelDefect::none) {
+  switch (m) {
+    case Model::rc11: return rc11_consistent(x, true, defect);
+    case Model::rc11_without_nta: return rc11_consistent(x, false, defect);
+    case Model::armv8: return armv8_consistent(x, defect);
+  }
+  return false;
+}
+
+}  // namespace frontsteal::axiomatic

@@ -1,0 +1,99 @@
+// program.hpp — a litmus program: a few threads of straight-line atomic accesses and fences, and the final
+// state whose reachability is asked.
+//
+// An instruction carries two views. The C++ view (`order`) is what RC11 reads. The ARMv8 view (`arm`) is what
+// the ARMv8 model reads: written directly for the AArch64 catalogue's tests, or produced from the C++ view by
+// compile_to_armv8() with the standard mapping (Sewell et al.'s C/C++11 mappings page; ARM's own ABI notes):
+//   load   relaxed → LDR        acquire, seq_cst → LDAR (A)
+//   store  relaxed → STR        release, seq_cst → STLR (L)
+//   fence  acquire → DMB ISHLD  release, acq_rel, seq_cst → DMB ISH
+//   fetch_add (ARMv8.1 LSE) relaxed → LDADD, acquire → LDADDA (A), release → LDADDL (L), acq_rel, seq_cst →
+//   LDADDAL (A and L); when the result is unused and the order has no acquire, the compiler may emit STADD /
+//   STADDL instead, whose read is not a read for DMB ISHLD's ordering (the case of LLVM issues #69503, #68428).
+// Values are small integers; every location starts at 0. A fetch_add writes the value it read plus its operand,
+// an exchange its operand.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace frontsteal::axiomatic {
+
+enum class Order : std::uint8_t { relaxed, acquire, release, acq_rel, seq_cst };
+enum class Op : std::uint8_t { load, store, fetch_add, exchange, fence };  // exchange: SWP / atomic exchange
+enum class ArmFence : std::uint8_t { none, full, load, store };            // DMB ISH (SY), DMB ISHLD, DMB ISHST
+
+struct ArmAccess {
+  bool acquire = false;     // LDAR / LDADDA / LDADDAL: the read is an A
+  bool acquire_pc = false;  // LDAPR: the read is a Q (acquirePC: ordered before later accesses, not after L)
+  bool release = false;     // STLR / LDADDL / LDADDAL / STADDL: the write is an L
+  ArmFence fence = ArmFence::none;
+  bool result_unused = false;  // STADD(L): the read is not ordered by DMB ISHLD
+};
+
+struct Instruction {
+  Op op = Op::load;
+  int location = -1;  // index into LitmusTest::locations; −1 for fences
+  int value = 0;      // the value a store or an exchange writes, or a fetch_add's operand
+  int reg = -1;       // load / fetch_add: the register that receives the value read (−1: unused)
+  Order order = Order::relaxed;
+  ArmAccess arm;
+  // ARMv8 only: the value written depends on what the instruction at this index of the same thread read (a data
+  // dependency, dob). The value itself stays `value`: the catalogue's tests make the dependency a no-op (w|1).
+  int data_from = -1;
+  std::string label;  // a protocol site label (core/site.hpp) where the program models the protocol
+};
+
+struct RegisterIs {
+  int reg;
+  int value;
+};
+struct MemoryIs {
+  int location;
+  int value;
+};
+
+// The final state asked about: every listed register and location has its value.
+struct FinalState {
+  std::vector<RegisterIs> registers;
+  std::vector<MemoryIs> memory;
+};
+
+struct LitmusTest {
+  std::string name;
+  std::vector<std::string> locations;
+  std::vector<std::string> registers;  // names, for printing ("1:r0")
+  std::vector<std::vector<Instruction>> threads;
+  FinalState final_state;
+};
+
+// The standard C++ → ARMv8 mapping (above), applied to every instruction's C++ order. `use_stadd`: fetch_adds
+// whose result is unused and whose order has no acquire become ST<OP> (what LLVM emits for them).
+// `acquire_pc`: acquire (not seq_cst) loads become LDAPR, the RCpc mapping compilers use from ARMv8.3.
+inline LitmusTest compile_to_armv8(LitmusTest test, bool use_stadd = true, bool acquire_pc = false) {
+  for (auto& thread : test.threads) {
+    for (Instruction& in : thread) {
+      const bool acq = in.order == Order::acquire || in.order == Order::acq_rel || in.order == Order::seq_cst;
+      const bool rel = in.order == Order::release || in.order == Order::acq_rel || in.order == Order::seq_cst;
+      in.arm = {};
+      switch (in.op) {
+        case Op::load:
+          in.arm.acquire = acq && !(acquire_pc && in.order == Order::acquire);
+          in.arm.acquire_pc = acquire_pc && in.order == Order::acquire;
+          break;
+        case Op::store: in.arm.release = rel; break;
+        case Op::fetch_add:
+        case Op::exchange:
+          in.arm.acquire = acq;
+          in.arm.release = rel;
+          in.arm.result_unused = use_stadd && in.reg < 0 && !acq;
+          break;
+        case Op::fence: in.arm.fence = in.order == Order::acquire ? ArmFence::load : ArmFence::full; break;
+      }
+    }
+  }
+  return test;
+}
+
+}  // namespace frontsteal::axiomatic

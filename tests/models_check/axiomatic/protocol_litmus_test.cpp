@@ -1,0 +1,82 @@
+// The handshake litmus (models_check/axiomatic/protocol_litmus.hpp) under the axiomatic checker: every
+// exactly-once policy forbids the duplicate under RC11, RC11 without no-thin-air and ARMv8 (both acquire
+// mappings); Paper's duplicate is allowed where the literature says; and each one-step weakening of Minimal's
+// fences is killed (the duplicate becomes reachable), so the verdicts above are not vacuous.
+#include "models_check/axiomatic/protocol_litmus.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "models_check/axiomatic/checker.hpp"
+
+namespace ax = frontsteal::axiomatic;
+using frontsteal::Fence;
+using frontsteal::Site;
+
+namespace {
+
+struct Duplicates {
+  bool rc11, rc11_lb, armv8, armv8_ldapr;
+};
+
+Duplicates duplicates(const ax::LitmusTest& t) {
+  return {ax::check(t, ax::Model::rc11).allowed, ax::check(t, ax::Model::rc11_without_nta).allowed,
+          ax::check(ax::compile_to_armv8(t), ax::Model::armv8).allowed,
+          ax::check(ax::compile_to_armv8(t, true, true), ax::Model::armv8).allowed};
+}
+
+// Minimal with the fence at `Weak` replaced by `To`.
+template <Site Weak, Fence To>
+struct MinimalWeakened : frontsteal::Minimal {
+  static constexpr std::string_view kName = "Minimal, one fence weakened";
+  static constexpr Fence fence(Site s) noexcept { return s == Weak ? To : frontsteal::Minimal::fence(s); }
+};
+
+}  // namespace
+
+TEST_CASE("exactly-once policies forbid the handshake's duplicate under every model", "[axiomatic]") {
+  for (const ax::ProtocolLitmus& p : ax::handshake_litmus_all()) {
+    if (p.contract != frontsteal::Contract::kExactlyOnce) continue;
+    const Duplicates d = duplicates(p.test);
+    INFO(p.policy);
+    CHECK_FALSE(d.rc11);
+    CHECK_FALSE(d.rc11_lb);
+    CHECK_FALSE(d.armv8);
+    CHECK_FALSE(d.armv8_ldapr);
+  }
+}
+
+TEST_CASE("Paper's handshake: duplicate under C++ and with LDAPR, not with LDAR (STLR then LDAR is ordered)",
+          "[axiomatic]") {
+  const Duplicates d = duplicates(ax::handshake_litmus<frontsteal::Paper>().test);
+  CHECK(d.rc11);
+  CHECK(d.rc11_lb);
+  CHECK_FALSE(d.armv8);
+  CHECK(d.armv8_ldapr);
+}
+
+TEST_CASE("every one-step weakening of Minimal's handshake fences is killed", "[axiomatic]") {
+  // Dropping either fence: the duplicate under C++ and under ARMv8.
+  for (const Duplicates d :
+       {duplicates(ax::handshake_litmus<MinimalWeakened<Site::kOwnerStoreLoadFence, Fence::kNone>>().test),
+        duplicates(ax::handshake_litmus<MinimalWeakened<Site::kThiefStoreLoadFence, Fence::kNone>>().test)}) {
+    CHECK(d.rc11);
+    CHECK(d.armv8);
+  }
+  // seq_cst → acq_rel: the duplicate under C++ (an acq_rel fence does not order a store before a load); not on
+  // ARMv8, where the mapping makes every non-acquire fence a full DMB ISH.
+  for (const Duplicates d :
+       {duplicates(ax::handshake_litmus<MinimalWeakened<Site::kOwnerStoreLoadFence, Fence::kAcqRel>>().test),
+        duplicates(ax::handshake_litmus<MinimalWeakened<Site::kThiefStoreLoadFence, Fence::kAcqRel>>().test)}) {
+    CHECK(d.rc11);
+    CHECK_FALSE(d.armv8);
+  }
+}
+
+TEST_CASE("the handshake litmus carries the site table's labels", "[axiomatic]") {
+  const ax::LitmusTest t = ax::handshake_litmus<frontsteal::Fenced>().test;
+  REQUIRE(t.threads.size() == 2);
+  CHECK(t.threads[0].front().label == frontsteal::info(Site::kOwnerAnnounce).label);
+  CHECK(t.threads[0].back().label == frontsteal::info(Site::kOwnerReadEnd).label);
+  CHECK(t.threads[1].front().label == frontsteal::info(Site::kThiefShrinkEnd).label);
+  CHECK(t.threads[1].back().label == frontsteal::info(Site::kThiefAwaitTransient).label);
+}
