@@ -40,7 +40,7 @@ inline std::string describe(const Execution& x, int e) {
   const LitmusTest& t = *x.test;
   std::ostringstream s;
   if (ev.thread < 0) {
-    s << "init " << t.locations[ev.location] << "=0";
+    s << "init " << t.locations[ev.location] << "=" << x.value[e];
     return s.str();
   }
   const Instruction& in = *ev.instruction;

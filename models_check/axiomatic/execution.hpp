@@ -1,7 +1,7 @@
 // execution.hpp — the candidate executions of a litmus program: events, and every choice of reads-from and
 // coherence order.
 //
-// Events: one write of 0 per location (the initial state, its own "thread" −1), then each thread's
+// Events: one initial write per location (the initial state, its own "thread" −1), then each thread's
 // instructions in program order: a load is a read, a store a write, a fence a fence, a fetch_add or exchange a
 // read and a write joined by `rmw`. A candidate execution picks, for every read, the write it reads from (any write to
 // the location: rf), and for every location a total order of its writes with the initial write first (co). Values
@@ -125,6 +125,9 @@ inline long for_each_candidate(const LitmusTest& test, const std::function<bool(
   long visited = 0;
   bool go_on = true;
 
+  const auto initial_value = [&](int loc) {
+    return loc < static_cast<int>(test.initial.size()) ? test.initial[loc] : 0;
+  };
   const auto resolve_values = [&]() {
     x.value.assign(n, 0);
     std::vector<int> state(n, 0);  // 0 unknown, 1 in progress, 2 done
@@ -141,7 +144,9 @@ inline long for_each_candidate(const LitmusTest& test, const std::function<bool(
       if (ev.kind == EventKind::read) {
         if (!value_of(read_source[e])) return false;
         x.value[e] = x.value[read_source[e]];
-      } else if (ev.kind == EventKind::write && ev.instruction != nullptr) {
+      } else if (ev.kind == EventKind::write && ev.instruction == nullptr) {
+        x.value[e] = initial_value(ev.location);
+      } else if (ev.kind == EventKind::write) {
         if (ev.is_rmw_part && ev.instruction->op == Op::fetch_add) {
           if (!value_of(e - 1)) return false;
           x.value[e] = x.value[e - 1] + ev.instruction->value;

@@ -86,26 +86,36 @@ int main(int argc, char** argv) {
       every_defect_caught = every_defect_caught && !flipped.empty();
       controls.emplace_back(name, flipped);
     }
-    // The protocol's handshake under each policy and model: is the duplicate (r0 = r1 = 0) reachable?
-    struct HandshakeCell {
+    // The protocol's scenarios under each policy and model: is the bad outcome reachable?
+    struct Cell {
       std::string model;
-      bool duplicate;
+      bool reached;
       std::string witness;
     };
-    std::vector<std::pair<ax::ProtocolLitmus, std::vector<HandshakeCell>>> handshake;
+    using ScenarioTable = std::vector<std::pair<ax::ProtocolLitmus, std::vector<Cell>>>;
+    const auto tabulate = [&](const std::vector<ax::ProtocolLitmus>& programs) {
+      ScenarioTable table;
+      for (const ax::ProtocolLitmus& p : programs) {
+        std::vector<Cell> cells;
+        const auto run = [&](const std::string& model_name, const ax::LitmusTest& program, ax::Model m) {
+          const ax::Verdict v = ax::check(program, m, planted);
+          cells.push_back({model_name, v.allowed, v.witness ? ax::describe(*v.witness) : std::string{}});
+        };
+        run("RC11", p.test, ax::Model::rc11);
+        run("RC11 without no-thin-air", p.test, ax::Model::rc11_without_nta);
+        run("ARMv8 (acquire → LDAR)", ax::compile_to_armv8(p.test), ax::Model::armv8);
+        run("ARMv8.3 (acquire → LDAPR)", ax::compile_to_armv8(p.test, true, true), ax::Model::armv8);
+        table.emplace_back(p, std::move(cells));
+      }
+      return table;
+    };
+    const ScenarioTable handshake = tabulate(ax::handshake_litmus_all());
+    const ScenarioTable termination = tabulate(ax::termination_litmus_all());
     bool exactly_once_holds = true;
-    for (const ax::ProtocolLitmus& p : ax::handshake_litmus_all()) {
-      std::vector<HandshakeCell> cells;
-      const auto run = [&](const std::string& model_name, const ax::LitmusTest& program, ax::Model m) {
-        const ax::Verdict v = ax::check(program, m, planted);
-        cells.push_back({model_name, v.allowed, v.witness ? ax::describe(*v.witness) : std::string{}});
-        if (p.contract == frontsteal::Contract::kExactlyOnce && v.allowed) exactly_once_holds = false;
-      };
-      run("RC11", p.test, ax::Model::rc11);
-      run("RC11 without no-thin-air", p.test, ax::Model::rc11_without_nta);
-      run("ARMv8 (acquire → LDAR)", ax::compile_to_armv8(p.test), ax::Model::armv8);
-      run("ARMv8.3 (acquire → LDAPR)", ax::compile_to_armv8(p.test, true, true), ax::Model::armv8);
-      handshake.emplace_back(p, std::move(cells));
+    for (const auto& [p, cells] : handshake) {
+      for (const Cell& c : cells) {
+        if (p.contract == frontsteal::Contract::kExactlyOnce && c.reached) exactly_once_holds = false;
+      }
     }
     const bool passed = disagreements == 0 && every_defect_caught && exactly_once_holds;
 
@@ -136,27 +146,38 @@ int main(int argc, char** argv) {
       if (flipped.size() > 6) md << ", …";
       md << "\n";
     }
+    const auto scenario_table = [&](const ScenarioTable& table, const std::string& bad) {
+      md << "| policy | contract |";
+      for (const Cell& c : table.front().second) md << " " << c.model << " |";
+      md << "\n|---|---|";
+      for (std::size_t k = 0; k < table.front().second.size(); ++k) md << "---|";
+      md << "\n";
+      for (const auto& [p, cells] : table) {
+        md << "| " << p.policy << " | " << frontsteal::name(p.contract) << " |";
+        for (const Cell& c : cells) md << " " << (c.reached ? bad + " ALLOWED" : "forbidden") << " |";
+        md << "\n";
+      }
+      md << "\nCounterexamples (events labelled with their sites; rf and co edges between event numbers):\n\n";
+      for (const auto& [p, cells] : table) {
+        for (const Cell& c : cells) {
+          if (c.reached) md << "**" << p.policy << "** under " << c.model << ":\n```\n" << c.witness << "```\n";
+        }
+      }
+    };
     md << "\n## The protocol's handshake, policy × model\n\n"
        << "Generated from core/policies.hpp and core/site.hpp (models_check/axiomatic/protocol_litmus.hpp): owner O1 "
           "ListTransient := 1; F1; O2 r0 := End — thief T3 End := mid; F2; T4 r1 := ListTransient. The duplicate is "
           "r0 = 0 ∧ r1 = 0 (both process the item). Exactly-once policies must forbid it under every model; "
-       << (exactly_once_holds ? "they do." : "**one does not** (counterexample below).") << "\n\n"
-       << "| policy | contract |";
-    for (const auto& c : handshake.front().second) md << " " << c.model << " |";
-    md << "\n|---|---|";
-    for (std::size_t k = 0; k < handshake.front().second.size(); ++k) md << "---|";
-    md << "\n";
-    for (const auto& [p, cells] : handshake) {
-      md << "| " << p.policy << " | " << frontsteal::name(p.contract) << " |";
-      for (const auto& c : cells) md << " " << (c.duplicate ? "duplicate ALLOWED" : "forbidden") << " |";
-      md << "\n";
-    }
-    md << "\nCounterexamples (the duplicate's execution, events labelled with their sites):\n\n";
-    for (const auto& [p, cells] : handshake) {
-      for (const auto& c : cells) {
-        if (c.duplicate) md << "**" << p.policy << "** under " << c.model << ":\n```\n" << c.witness << "```\n";
-      }
-    }
+       << (exactly_once_holds ? "they do." : "**one does not** (counterexample below).") << "\n\n";
+    scenario_table(handshake, "duplicate");
+    md << "\n## Termination, policy × model\n\n"
+          "Thief A1 Active += 1; T3 End := mid; F2; T4 — victim O1; F1; O2 r0 := End; (branch on r0) O4; A2 Active -= "
+          "1 "
+          "— idle A3 r1 := Active; initially Active = 1, End = 2 (protocol_litmus.hpp). An early quit is r0 = 1 ∧ r1 = "
+          "0: the victim saw the steal and left while the thief's join was not yet counted, and an idle worker read 0 "
+          "and stopped looking for work. Every item still runs exactly once (the thief holds its share); the idle "
+          "worker just stops helping. \"Minimal + T3 release + O2 acquire\" is a candidate (not core's Minimal).\n\n";
+    scenario_table(termination, "early quit");
     md << "\n## Not transcribed\n\nherd's AArch64 kinds.txt tests that need what these programs cannot say (address "
           "or control dependencies, compare-and-swap, conditional select, branches):";
     for (const std::string& t : ax::untranscribed_aarch64_tests()) md << " " << t << ";";
@@ -183,14 +204,18 @@ int main(int argc, char** argv) {
     report::Json jcontrols = report::Json::object();
     for (const auto& [name, flipped] : controls) jcontrols[name] = flipped;
     doc["negative_controls"] = jcontrols;
-    report::Json jhandshake = report::Json::array();
-    for (const auto& [p, cells] : handshake) {
-      report::Json by_model = report::Json::object();
-      for (const auto& c : cells) by_model[c.model] = c.duplicate ? "duplicate allowed" : "forbidden";
-      jhandshake.push_back(
-          {{"policy", p.policy}, {"contract", std::string(frontsteal::name(p.contract))}, {"duplicate", by_model}});
-    }
-    doc["handshake"] = jhandshake;
+    const auto scenario_json = [](const ScenarioTable& table) {
+      report::Json rows = report::Json::array();
+      for (const auto& [p, cells] : table) {
+        report::Json by_model = report::Json::object();
+        for (const Cell& c : cells) by_model[c.model] = c.reached ? "allowed" : "forbidden";
+        rows.push_back(
+            {{"policy", p.policy}, {"contract", std::string(frontsteal::name(p.contract))}, {"bad_outcome", by_model}});
+      }
+      return rows;
+    };
+    doc["handshake"] = scenario_json(handshake);
+    doc["termination"] = scenario_json(termination);
     const report::ResultsDir dir(kProgram, o.out);
     dir.write("litmus-validation.md", md.str());
     dir.write_json("litmus-validation.json", doc);

@@ -19,8 +19,8 @@
 //   Internal     acyclic(po-loc ∪ co ∪ fr ∪ rf)
 //   External     acyclic(ob), ob = (obs ∪ dob ∪ aob ∪ bob)+ with
 //                obs = rfe ∪ coe ∪ fre
-//                dob = data here (no address or control dependencies in these programs; a fetch_add's own
-//                      read-to-write dependency is rmw, in aob)
+//                dob = data ∪ ctrl;[W] here (no address dependencies or ISB in these programs; a fetch_add's
+//                      own read-to-write dependency is rmw, in aob)
 //                aob = rmw ∪ [range(rmw)] ; rfi ; [A ∪ Q]
 //                bob = po ; [DMB.FULL] ; po ∪ [L] ; po ; [A] ∪ [R] ; po ; [DMB.LD] ; po ∪ [A ∪ Q] ; po
 //                      ∪ [W] ; po ; [DMB.ST] ; po ; [W] ∪ po ; [L] ∪ po ; [L] ; coi
@@ -159,15 +159,25 @@ inline bool armv8_consistent(const Execution& x, ModelDefect defect = ModelDefec
   const EventSet W = x.writes;
 
   const Relation obs = (x.rf & external) | (x.co & external) | (fr & external);
-  Relation dob(n);  // data dependencies: the read of instruction data_from → the write that uses its value
+  // Dependencies: data (the read of instruction data_from → the write that uses its value) and control;[W] (the
+  // read a branch tested → every write at or after the instruction that names it, in the same thread).
+  Relation dob(n);
+  const auto read_of = [&](int thread, int index) {
+    for (int r = 0; r < n; ++r) {
+      if (x.events[r].kind == EventKind::read && x.events[r].thread == thread && x.events[r].index == index) return r;
+    }
+    return -1;
+  };
   for (int e = 0; e < n; ++e) {
     const Event& ev = x.events[e];
-    if (ev.kind != EventKind::write || ev.instruction == nullptr || ev.instruction->data_from < 0) continue;
-    for (int r = 0; r < n; ++r) {
-      if (x.events[r].kind == EventKind::read && x.events[r].thread == ev.thread &&
-          x.events[r].index == ev.instruction->data_from) {
-        dob.add(r, e);
-      }
+    if (ev.kind != EventKind::write || ev.instruction == nullptr) continue;
+    if (ev.instruction->data_from >= 0) {
+      if (const int r = read_of(ev.thread, ev.instruction->data_from); r >= 0) dob.add(r, e);
+    }
+    for (int earlier = 0; earlier <= ev.index; ++earlier) {
+      const int branch_on = x.test->threads[ev.thread][earlier].ctrl_from;
+      if (branch_on < 0) continue;
+      if (const int r = read_of(ev.thread, branch_on); r >= 0) dob.add(r, e);
     }
   }
   const Relation aob =

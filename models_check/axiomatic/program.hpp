@@ -10,8 +10,8 @@
 //   fetch_add (ARMv8.1 LSE) relaxed → LDADD, acquire → LDADDA (A), release → LDADDL (L), acq_rel, seq_cst →
 //   LDADDAL (A and L); when the result is unused and the order has no acquire, the compiler may emit STADD /
 //   STADDL instead, whose read is not a read for DMB ISHLD's ordering (the case of LLVM issues #69503, #68428).
-// Values are small integers; every location starts at 0. A fetch_add writes the value it read plus its operand,
-// an exchange its operand.
+// Values are small integers; a location starts at its `initial` value (0 unless given). A fetch_add writes the value it
+// read plus its operand, an exchange its operand.
 #pragma once
 
 #include <cstdint>
@@ -42,6 +42,9 @@ struct Instruction {
   // ARMv8 only: the value written depends on what the instruction at this index of the same thread read (a data
   // dependency, dob). The value itself stays `value`: the catalogue's tests make the dependency a no-op (w|1).
   int data_from = -1;
+  // ARMv8 only: this instruction and every later one of the thread run after a branch on what the instruction at
+  // this index read (a control dependency; dob orders that read before each of those writes).
+  int ctrl_from = -1;
   std::string label;  // a protocol site label (core/site.hpp) where the program models the protocol
 };
 
@@ -66,6 +69,7 @@ struct LitmusTest {
   std::vector<std::string> registers;  // names, for printing ("1:r0")
   std::vector<std::vector<Instruction>> threads;
   FinalState final_state;
+  std::vector<int> initial;  // initial value per location; missing ones are 0
 };
 
 // The standard C++ → ARMv8 mapping (above), applied to every instruction's C++ order. `use_stadd`: fetch_adds

@@ -1,7 +1,8 @@
-// protocol_litmus.hpp — the protocol's handshake as a litmus program, generated from a policy (core/policies.hpp)
-// and the site table (core/site.hpp), so the program cannot drift from the code: every access's order and every
+// protocol_litmus.hpp — the protocol's scenarios as litmus programs, generated from a policy (core/policies.hpp)
+// and the site table (core/site.hpp), so the programs cannot drift from the code: every access's order and every
 // fence come from Policy::order / Policy::fence at the site, and every instruction carries the site's label.
 //
+// The handshake (the claim against the steal):
 //     owner (claims an item)                thief (holds LockList[b], shrinks the victim's list)
 //     O1  ListTransient := 1                T3  End := mid
 //     F1  fence                             F2  fence
@@ -92,6 +93,81 @@ ProtocolLitmus handshake_litmus() {
   t.threads = {owner, thief};
   t.final_state = {{{0, 0}, {1, 0}}, {}};
   return {std::string(Policy::kName), Policy::kContract, t};
+}
+
+// Termination (active_workers.hpp, stealing_protocol.hpp's shrink_victim and try_claim): the path on which an idle
+// worker could stop looking for work while a stolen share is held by nobody it counts.
+//     thief                        victim (owner of the list)           idle worker
+//     A1  Active += 1              O1  ListTransient := 1               A3  r1 := Active
+//     T3  End := mid               F1  fence
+//     F2  fence                    O2  r0 := End
+//     T4  ListTransient?           (r0 = mid: the list is exhausted, so, after a branch on r0:)
+//                                  O4  ListTransient := 0
+//                                  A2  Active -= 1
+// Initially Active = 1 (the victim), End = 2 (one item left: index 1; the victim's Front is 1), mid = 1. Asked:
+// r0 = 1 ∧ r1 = 0 — the victim saw the steal and left, and the idle worker read 0: an early quit (the
+// thief's share still runs, exactly once; the idle worker just stops helping). SC forbids it: A1 precedes T3,
+// which precedes O2 and so A2, so the count never passes through 0.
+template <class Policy>
+ProtocolLitmus termination_litmus() {
+  constexpr int transient = 0, end = 1, active = 2;
+  const auto at = [](Op op, Site s, int loc, int value, int reg) {
+    Instruction i;
+    i.op = op;
+    i.location = loc;
+    i.value = value;
+    i.reg = reg;
+    i.order = order_of(Policy::order(s));
+    i.label = std::string(info(s).label);
+    return i;
+  };
+  const auto fence_at = [](Site s, std::vector<Instruction>& thread) {
+    if (const std::optional<Order> o = fence_order_of(Policy::fence(s))) {
+      Instruction i;
+      i.op = Op::fence;
+      i.order = *o;
+      i.label = std::string(info(s).label);
+      thread.push_back(i);
+    }
+  };
+  std::vector<Instruction> thief{at(Op::fetch_add, Site::kActiveJoin, active, +1, -1),
+                                 at(Op::store, Site::kThiefShrinkEnd, end, 1, -1)};
+  fence_at(Site::kThiefStoreLoadFence, thief);
+  thief.push_back(at(Op::load, Site::kThiefAwaitTransient, transient, 0, 2));
+  std::vector<Instruction> victim{at(Op::store, Site::kOwnerAnnounce, transient, 1, -1)};
+  fence_at(Site::kOwnerStoreLoadFence, victim);
+  const int read_end = static_cast<int>(victim.size());
+  victim.push_back(at(Op::load, Site::kOwnerReadEnd, end, 0, 0));
+  Instruction retract = at(Op::store, Site::kOwnerRetract, transient, 0, -1);
+  retract.ctrl_from = read_end;  // `if (f >= end)`: the branch on O2
+  victim.push_back(retract);
+  victim.push_back(at(Op::fetch_add, Site::kActiveLeave, active, -1, -1));
+  std::vector<Instruction> idle{at(Op::load, Site::kActivePoll, active, 0, 1)};
+  LitmusTest t;
+  t.name = "termination (" + std::string(Policy::kName) + ")";
+  t.locations = {"ListTransient", "End", "Active"};
+  t.registers = {"victim.e", "idle.active", "thief.t"};
+  t.threads = {thief, victim, idle};
+  t.initial = {0, 2, 1};
+  t.final_state = {{{0, 1}, {1, 0}}, {}};
+  return {std::string(Policy::kName), Policy::kContract, t};
+}
+
+// Minimal with the two orders the termination litmus needs under C++: T3 release, O2 acquire (so A1
+// happens-before A2 whenever the victim sees the steal). A candidate, certified here by the axiomatic checker
+// only; core/policies.hpp's Minimal is unchanged (its certificate rests on Relacy).
+struct MinimalOrderedJoin : Minimal {
+  static constexpr std::string_view kName = "Minimal + T3 release + O2 acquire";
+  static constexpr Mo order(Site s) noexcept {
+    if (s == Site::kThiefShrinkEnd) return Mo::kRelease;
+    if (s == Site::kOwnerReadEnd) return Mo::kAcquire;
+    return Minimal::order(s);
+  }
+};
+
+inline std::vector<ProtocolLitmus> termination_litmus_all() {
+  return {termination_litmus<SeqCst>(),  termination_litmus<Fenced>(), termination_litmus<Asymmetric>(),
+          termination_litmus<Minimal>(), termination_litmus<Paper>(),  termination_litmus<MinimalOrderedJoin>()};
 }
 
 inline std::vector<ProtocolLitmus> handshake_litmus_all() {

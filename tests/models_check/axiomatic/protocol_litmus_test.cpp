@@ -80,3 +80,49 @@ TEST_CASE("the handshake litmus carries the site table's labels", "[axiomatic]")
   CHECK(t.threads[1].front().label == frontsteal::info(Site::kThiefShrinkEnd).label);
   CHECK(t.threads[1].back().label == frontsteal::info(Site::kThiefAwaitTransient).label);
 }
+
+namespace {
+
+// The candidate with one of its two strengthened orders put back to relaxed.
+template <Site Weak>
+struct OrderedJoinWeakened : ax::MinimalOrderedJoin {
+  static constexpr frontsteal::Mo order(Site s) noexcept {
+    return s == Weak ? frontsteal::Mo::kRelaxed : ax::MinimalOrderedJoin::order(s);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("termination: Minimal's relaxed join lets an idle worker quit early under C++ with LB and on ARMv8",
+          "[axiomatic]") {
+  for (const ax::ProtocolLitmus& p : ax::termination_litmus_all()) {
+    const Duplicates early_quit = duplicates(p.test);  // the same four models, the bad outcome is the early quit
+    INFO(p.policy);
+    if (p.policy == frontsteal::Minimal::kName) {
+      CHECK_FALSE(early_quit.rc11);  // no-thin-air forbids it: the victim's leave is read by the thief's join
+      CHECK(early_quit.rc11_lb);
+      CHECK(early_quit.armv8);
+      CHECK(early_quit.armv8_ldapr);
+    } else {
+      CHECK_FALSE(early_quit.rc11);
+      CHECK_FALSE(early_quit.rc11_lb);
+      CHECK_FALSE(early_quit.armv8);
+      CHECK_FALSE(early_quit.armv8_ldapr);
+    }
+  }
+}
+
+TEST_CASE("termination: both orders of the candidate are needed under C++, on ARMv8 T3's release suffices",
+          "[axiomatic]") {
+  CHECK_FALSE(duplicates(ax::handshake_litmus<ax::MinimalOrderedJoin>().test).rc11_lb);  // still exactly-once
+  const Duplicates without_release =
+      duplicates(ax::termination_litmus<OrderedJoinWeakened<Site::kThiefShrinkEnd>>().test);
+  CHECK(without_release.rc11_lb);
+  CHECK(without_release.armv8);
+  // O2 relaxed again: C++ keeps no dependency, so the early quit returns; ARMv8 orders O2 before A2's write by
+  // the branch (ctrl;[W]) and T3's STLR orders A1 before T3.
+  const Duplicates without_acquire =
+      duplicates(ax::termination_litmus<OrderedJoinWeakened<Site::kOwnerReadEnd>>().test);
+  CHECK(without_acquire.rc11_lb);
+  CHECK_FALSE(without_acquire.armv8);
+}
