@@ -111,6 +111,7 @@ int main(int argc, char** argv) {
     };
     const ScenarioTable handshake = tabulate(ax::handshake_litmus_all());
     const ScenarioTable termination = tabulate(ax::termination_litmus_all());
+    const ScenarioTable publication = tabulate(ax::publication_litmus_all());
     bool exactly_once_holds = true;
     for (const auto& [p, cells] : handshake) {
       for (const Cell& c : cells) {
@@ -178,6 +179,13 @@ int main(int argc, char** argv) {
           "and stopped looking for work. Every item still runs exactly once (the thief holds its share); the idle "
           "worker just stops helping. \"Minimal + T3 release + O2 acquire\" is a candidate (not core's Minimal).\n\n";
     scenario_table(termination, "early quit");
+    md << "\n## Publication (greedy rendering), policy × model\n\n"
+          "Tessellator A: triangles A := 1; W1 Done += 1 — tessellator B: triangles B := 1; W1 r3 := Done += 1; "
+          "(branch: "
+          "last) W2 Published := slot (exchange) — pusher: P2 r0 := Published; r1 := triangles A "
+          "(protocol_litmus.hpp). A torn component is r3 = 1 ∧ r0 = 1 ∧ r1 = 0. The one-step weakenings of "
+          "W1, W2 and P2 are in tests/models_check/axiomatic/.\n\n";
+    scenario_table(publication, "torn component");
     md << "\n## Not transcribed\n\nherd's AArch64 kinds.txt tests that need what these programs cannot say (address "
           "or control dependencies, compare-and-swap, conditional select, branches):";
     for (const std::string& t : ax::untranscribed_aarch64_tests()) md << " " << t << ";";
@@ -216,6 +224,7 @@ int main(int argc, char** argv) {
     };
     doc["handshake"] = scenario_json(handshake);
     doc["termination"] = scenario_json(termination);
+    doc["publication"] = scenario_json(publication);
     const report::ResultsDir dir(kProgram, o.out);
     dir.write("litmus-validation.md", md.str());
     dir.write_json("litmus-validation.json", doc);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/policies.hpp"
+#include "core/publication_policies.hpp"
 #include "core/site.hpp"
 #include "models_check/axiomatic/program.hpp"
 
@@ -169,6 +170,59 @@ inline std::vector<ProtocolLitmus> termination_litmus_all() {
   return {termination_litmus<SeqCst>(),  termination_litmus<Fenced>(), termination_litmus<Asymmetric>(),
           termination_litmus<Minimal>(), termination_litmus<Paper>(),  termination_litmus<MinimalOrderedJoin>()};
 }
+
+// Publication (component_publication.hpp, greedy rendering): a component of two surfaces written by two
+// tessellators; the one whose W1 count-down is the last publishes the back slot (W2); the pusher reads the
+// published slot (P2) and then the triangles.
+//     tessellator A              tessellator B                          pusher
+//     triangles A := 1           triangles B := 1                       P2  r0 := Published
+//     W1  r2 := Done += 1        W1  r3 := Done += 1                    r1 := triangles A
+//                                (r3 = 1: last, so after a branch:)
+//                                W2  Published := slot 1 (exchange)
+// Asked: r3 = 1 ∧ r0 = 1 ∧ r1 = 0 — the pusher draws the published component without tessellator A's triangles
+// (a torn component). The triangle writes are plain in the code; here they are relaxed atomics, which is what
+// a race-free program's plain accesses may be treated as for this question.
+template <class Policy>
+ProtocolLitmus publication_litmus() {
+  constexpr int triangles_a = 0, triangles_b = 1, done = 2, published = 3;
+  const auto at = [](Op op, Site s, int loc, int value, int reg) {
+    Instruction i;
+    i.op = op;
+    i.location = loc;
+    i.value = value;
+    i.reg = reg;
+    i.order = order_of(Policy::order(s));
+    i.label = std::string(info(s).label);
+    return i;
+  };
+  const auto plain = [](Op op, int loc, int value, int reg) {
+    Instruction i;
+    i.op = op;
+    i.location = loc;
+    i.value = value;
+    i.reg = reg;
+    i.label = "triangles";
+    return i;
+  };
+  std::vector<Instruction> a{plain(Op::store, triangles_a, 1, -1),
+                             at(Op::fetch_add, Site::kWriterCountDown, done, 1, 2)};
+  std::vector<Instruction> b{plain(Op::store, triangles_b, 1, -1),
+                             at(Op::fetch_add, Site::kWriterCountDown, done, 1, 3)};
+  Instruction publish = at(Op::exchange, Site::kWriterPublish, published, 1, 4);
+  publish.ctrl_from = 1;  // `if (before + 1 == done_target)`
+  b.push_back(publish);
+  std::vector<Instruction> pusher{at(Op::load, Site::kPusherReadPublished, published, 0, 0),
+                                  plain(Op::load, triangles_a, 0, 1)};
+  LitmusTest t;
+  t.name = "publication (" + std::string(Policy::kName) + ")";
+  t.locations = {"TrianglesA", "TrianglesB", "Done", "Published"};
+  t.registers = {"pusher.slot", "pusher.triangles_a", "a.before", "b.before", "b.retired"};
+  t.threads = {a, b, pusher};
+  t.final_state = {{{3, 1}, {0, 1}, {1, 0}}, {}};
+  return {std::string(Policy::kName), Policy::kContract, t};
+}
+
+inline std::vector<ProtocolLitmus> publication_litmus_all() { return {publication_litmus<PublicationOrders>()}; }
 
 inline std::vector<ProtocolLitmus> handshake_litmus_all() {
   return {handshake_litmus<SeqCst>(), handshake_litmus<Fenced>(), handshake_litmus<Asymmetric>(),

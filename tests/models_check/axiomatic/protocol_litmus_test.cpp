@@ -126,3 +126,42 @@ TEST_CASE("termination: both orders of the candidate are needed under C++, on AR
   CHECK(without_acquire.rc11_lb);
   CHECK_FALSE(without_acquire.armv8);
 }
+
+namespace {
+
+template <Site Weak, frontsteal::Mo To>
+struct PublicationWeakened : frontsteal::PublicationOrders {
+  static constexpr frontsteal::Mo order(Site s) noexcept {
+    return s == Weak ? To : frontsteal::PublicationOrders::order(s);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("publication: no torn component under any model, W1, W2 and P2 each needed", "[axiomatic]") {
+  using frontsteal::Mo;
+  const Duplicates sound = duplicates(ax::publication_litmus<frontsteal::PublicationOrders>().test);
+  CHECK_FALSE(sound.rc11);
+  CHECK_FALSE(sound.rc11_lb);
+  CHECK_FALSE(sound.armv8);
+  CHECK_FALSE(sound.armv8_ldapr);
+  // W1 without its acquire: the last tessellator does not acquire A's triangles (C++; on ARMv8 the branch on the
+  // count-down and the exchange's release keep them ordered, so only C++ shows it).
+  CHECK(duplicates(ax::publication_litmus<PublicationWeakened<Site::kWriterCountDown, Mo::kRelease>>().test).rc11);
+  // W1 without its release: A's triangles are not released to the count-down.
+  const Duplicates w1_acquire =
+      duplicates(ax::publication_litmus<PublicationWeakened<Site::kWriterCountDown, Mo::kAcquire>>().test);
+  CHECK(w1_acquire.rc11);
+  CHECK(w1_acquire.armv8);
+  // W2 relaxed: nothing released to the pusher under C++. On ARMv8 the last tessellator's LDADDAL is an acquire
+  // (A), which orders every later access of its thread, the exchange included: there W2's release is redundant.
+  const Duplicates w2 =
+      duplicates(ax::publication_litmus<PublicationWeakened<Site::kWriterPublish, Mo::kRelaxed>>().test);
+  CHECK(w2.rc11);
+  CHECK_FALSE(w2.armv8);
+  // P2 relaxed: the pusher's triangle read may come first.
+  const Duplicates p2 =
+      duplicates(ax::publication_litmus<PublicationWeakened<Site::kPusherReadPublished, Mo::kRelaxed>>().test);
+  CHECK(p2.rc11);
+  CHECK(p2.armv8);
+}
