@@ -112,6 +112,8 @@ int main(int argc, char** argv) {
     const ScenarioTable handshake = tabulate(ax::handshake_litmus_all());
     const ScenarioTable termination = tabulate(ax::termination_litmus_all());
     const ScenarioTable publication = tabulate(ax::publication_litmus_all());
+    const ScenarioTable lock = tabulate(ax::lock_litmus_all());
+    const ScenarioTable reclamation = tabulate(ax::reclamation_litmus_all());
     bool exactly_once_holds = true;
     for (const auto& [p, cells] : handshake) {
       for (const Cell& c : cells) {
@@ -186,6 +188,15 @@ int main(int argc, char** argv) {
           "(protocol_litmus.hpp). A torn component is r3 = 1 ∧ r0 = 1 ∧ r1 = 0. The one-step weakenings of "
           "W1, W2 and P2 are in tests/models_check/axiomatic/.\n\n";
     scenario_table(publication, "torn component");
+    md << "\n## Steal under the lock, policy × model\n\n"
+          "Thief 1 (holding LockList): T3 End := 1; L3 LockList := 0 — thief 2: L2 r0 := exchange(LockList, 1); T2 r1 "
+          ":= "
+          "End; initially LockList = 1, End = 2. A duplicate share is r0 = 0 ∧ r1 = 2.\n\n";
+    scenario_table(lock, "duplicate share");
+    md << "\n## Reclamation (greedy rendering), policy × model\n\n"
+          "Last tessellator: W2 r0 := exchange(Published, 2); W3 r1 := Started — pusher: P1 Started := 1; P2 r2 := "
+          "Published; initially Published = 1. A use after reuse is r0 = 1 ∧ r1 = 0 ∧ r2 = 1.\n\n";
+    scenario_table(reclamation, "use after reuse");
     md << "\n## Not transcribed\n\nherd's AArch64 kinds.txt tests that need what these programs cannot say (address "
           "or control dependencies, compare-and-swap, conditional select, branches):";
     for (const std::string& t : ax::untranscribed_aarch64_tests()) md << " " << t << ";";
@@ -225,6 +236,8 @@ int main(int argc, char** argv) {
     doc["handshake"] = scenario_json(handshake);
     doc["termination"] = scenario_json(termination);
     doc["publication"] = scenario_json(publication);
+    doc["lock"] = scenario_json(lock);
+    doc["reclamation"] = scenario_json(reclamation);
     const report::ResultsDir dir(kProgram, o.out);
     dir.write("litmus-validation.md", md.str());
     dir.write_json("litmus-validation.json", doc);

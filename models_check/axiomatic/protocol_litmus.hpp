@@ -57,30 +57,40 @@ struct ProtocolLitmus {
   LitmusTest test;
 };
 
+// An access at a protocol site, in the policy's order, labelled with the site. `reg` receives what a load or a
+// read-modify-write reads (−1: unused); `value` is what a store or exchange writes, or a fetch_add's operand.
+template <class Policy>
+Instruction site_access(Op op, Site s, int location, int value, int reg) {
+  Instruction i;
+  i.op = op;
+  i.location = location;
+  i.value = value;
+  i.reg = reg;
+  i.order = order_of(Policy::order(s));
+  i.label = std::string(info(s).label);
+  return i;
+}
+
+// The fence the policy puts at fence site `s`, appended to `thread` (nothing for no fence or a compiler fence).
+template <class Policy>
+void push_site_fence(Site s, std::vector<Instruction>& thread) {
+  if (const std::optional<Order> o = fence_order_of(Policy::fence(s))) {
+    Instruction i;
+    i.op = Op::fence;
+    i.order = *o;
+    i.label = std::string(info(s).label);
+    thread.push_back(i);
+  }
+}
+
 template <class Policy>
 ProtocolLitmus handshake_litmus() {
   constexpr int transient = 0, end = 1;
   const auto access = [](Op op, Site s, int loc, int value_or_reg) {
-    Instruction i;
-    i.op = op;
-    i.location = loc;
-    if (op == Op::load)
-      i.reg = value_or_reg;
-    else
-      i.value = value_or_reg;
-    i.order = order_of(Policy::order(s));
-    i.label = std::string(info(s).label);
-    return i;
+    return op == Op::load ? site_access<Policy>(op, s, loc, 0, value_or_reg)
+                          : site_access<Policy>(op, s, loc, value_or_reg, -1);
   };
-  const auto fence_at = [](Site s, std::vector<Instruction>& thread) {
-    if (const std::optional<Order> o = fence_order_of(Policy::fence(s))) {
-      Instruction i;
-      i.op = Op::fence;
-      i.order = *o;
-      i.label = std::string(info(s).label);
-      thread.push_back(i);
-    }
-  };
+  const auto fence_at = [](Site s, std::vector<Instruction>& thread) { push_site_fence<Policy>(s, thread); };
   LitmusTest t;
   t.name = "handshake (" + std::string(Policy::kName) + ")";
   t.locations = {"ListTransient", "End"};
@@ -112,25 +122,8 @@ ProtocolLitmus handshake_litmus() {
 template <class Policy>
 ProtocolLitmus termination_litmus() {
   constexpr int transient = 0, end = 1, active = 2;
-  const auto at = [](Op op, Site s, int loc, int value, int reg) {
-    Instruction i;
-    i.op = op;
-    i.location = loc;
-    i.value = value;
-    i.reg = reg;
-    i.order = order_of(Policy::order(s));
-    i.label = std::string(info(s).label);
-    return i;
-  };
-  const auto fence_at = [](Site s, std::vector<Instruction>& thread) {
-    if (const std::optional<Order> o = fence_order_of(Policy::fence(s))) {
-      Instruction i;
-      i.op = Op::fence;
-      i.order = *o;
-      i.label = std::string(info(s).label);
-      thread.push_back(i);
-    }
-  };
+  const auto at = site_access<Policy>;
+  const auto fence_at = [](Site s, std::vector<Instruction>& thread) { push_site_fence<Policy>(s, thread); };
   std::vector<Instruction> thief{at(Op::fetch_add, Site::kActiveJoin, active, +1, -1),
                                  at(Op::store, Site::kThiefShrinkEnd, end, 1, -1)};
   fence_at(Site::kThiefStoreLoadFence, thief);
@@ -185,16 +178,7 @@ inline std::vector<ProtocolLitmus> termination_litmus_all() {
 template <class Policy>
 ProtocolLitmus publication_litmus() {
   constexpr int triangles_a = 0, triangles_b = 1, done = 2, published = 3;
-  const auto at = [](Op op, Site s, int loc, int value, int reg) {
-    Instruction i;
-    i.op = op;
-    i.location = loc;
-    i.value = value;
-    i.reg = reg;
-    i.order = order_of(Policy::order(s));
-    i.label = std::string(info(s).label);
-    return i;
-  };
+  const auto at = site_access<Policy>;
   const auto plain = [](Op op, int loc, int value, int reg) {
     Instruction i;
     i.op = op;
@@ -221,6 +205,61 @@ ProtocolLitmus publication_litmus() {
   t.final_state = {{{3, 1}, {0, 1}, {1, 0}}, {}};
   return {std::string(Policy::kName), Policy::kContract, t};
 }
+
+// Two thieves of one victim, serialized by LockList (try_lock.hpp): the first holds the lock, shrinks End and
+// releases; the second takes the lock and reads End to size its share.
+//     thief 1 (holds LockList)          thief 2
+//     T3  End := 1                      L2  r0 := exchange(LockList, 1)
+//     L3  LockList := 0                 T2  r1 := End
+// Initially LockList = 1, End = 2. Asked: r0 = 0 ∧ r1 = 2 — the second thief got the lock from the first and
+// still sized its share by the old End: both would steal [1, 2) (a duplicate).
+template <class Policy>
+ProtocolLitmus lock_litmus() {
+  constexpr int lock = 0, end = 1;
+  const auto at = site_access<Policy>;
+  LitmusTest t;
+  t.name = "steal under the lock (" + std::string(Policy::kName) + ")";
+  t.locations = {"LockList", "End"};
+  t.registers = {"thief2.lock", "thief2.end"};
+  t.threads = {{at(Op::store, Site::kThiefShrinkEnd, end, 1, -1), at(Op::store, Site::kLockRelease, lock, 0, -1)},
+               {at(Op::exchange, Site::kLockAcquire, lock, 1, 0), at(Op::load, Site::kThiefReadEnd, end, 0, 1)}};
+  t.initial = {1, 2};
+  t.final_state = {{{0, 0}, {1, 2}}, {}};
+  return {std::string(Policy::kName), Policy::kContract, t};
+}
+
+// Reclamation (component_publication.hpp): the last tessellator publishes a new slot and reads which update the
+// pusher has started; the pusher announces its update and reads the published slot. A store→load pattern on
+// each side.
+//     last tessellator                           pusher
+//     W2  r0 := exchange(Published, 2)           P1  Started := 1
+//     W3  r1 := Started                          P2  r2 := Published
+// Initially Published = 1 (the slot now retired). Asked: r0 = 1 ∧ r1 = 0 ∧ r2 = 1 — the tessellator believes no
+// update has started since the retirement (it may hand slot 1 out again once the older updates complete), while
+// update 1 draws from slot 1: a use after reuse.
+template <class Policy>
+ProtocolLitmus reclamation_litmus() {
+  constexpr int published = 0, started = 1;
+  const auto at = site_access<Policy>;
+  LitmusTest t;
+  t.name = "reclamation (" + std::string(Policy::kName) + ")";
+  t.locations = {"Published", "Started"};
+  t.registers = {"writer.retired", "writer.started", "pusher.slot"};
+  t.threads = {
+      {at(Op::exchange, Site::kWriterPublish, published, 2, 0), at(Op::load, Site::kWriterReadStarted, started, 0, 1)},
+      {at(Op::store, Site::kPusherAnnounce, started, 1, -1),
+       at(Op::load, Site::kPusherReadPublished, published, 0, 2)}};
+  t.initial = {1, 0};
+  t.final_state = {{{0, 1}, {1, 0}, {2, 1}}, {}};
+  return {std::string(Policy::kName), Policy::kContract, t};
+}
+
+inline std::vector<ProtocolLitmus> lock_litmus_all() {
+  return {lock_litmus<SeqCst>(), lock_litmus<Fenced>(), lock_litmus<Asymmetric>(), lock_litmus<Minimal>(),
+          lock_litmus<Paper>()};
+}
+
+inline std::vector<ProtocolLitmus> reclamation_litmus_all() { return {reclamation_litmus<PublicationOrders>()}; }
 
 inline std::vector<ProtocolLitmus> publication_litmus_all() { return {publication_litmus<PublicationOrders>()}; }
 

@@ -165,3 +165,52 @@ TEST_CASE("publication: no torn component under any model, W1, W2 and P2 each ne
   CHECK(p2.rc11);
   CHECK(p2.armv8);
 }
+
+namespace {
+
+template <Site Weak, frontsteal::Mo To>
+struct MinimalOrderWeakened : frontsteal::Minimal {
+  static constexpr frontsteal::Mo order(Site s) noexcept { return s == Weak ? To : frontsteal::Minimal::order(s); }
+};
+
+}  // namespace
+
+TEST_CASE("the lock passes End from thief to thief under every policy, L2 acquire and L3 release each needed",
+          "[axiomatic]") {
+  using frontsteal::Mo;
+  for (const ax::ProtocolLitmus& p : ax::lock_litmus_all()) {
+    const Duplicates d = duplicates(p.test);
+    INFO(p.policy);
+    CHECK_FALSE(d.rc11);
+    CHECK_FALSE(d.rc11_lb);
+    CHECK_FALSE(d.armv8);
+    CHECK_FALSE(d.armv8_ldapr);
+  }
+  for (const Duplicates d :
+       {duplicates(ax::lock_litmus<MinimalOrderWeakened<Site::kLockAcquire, Mo::kRelaxed>>().test),
+        duplicates(ax::lock_litmus<MinimalOrderWeakened<Site::kLockRelease, Mo::kRelaxed>>().test)}) {
+    CHECK(d.rc11);
+    CHECK(d.armv8);
+  }
+}
+
+TEST_CASE("reclamation: no use after reuse, each of W2, W3, P1, P2 below seq_cst lets it happen", "[axiomatic]") {
+  using frontsteal::Mo;
+  const Duplicates sound = duplicates(ax::reclamation_litmus<frontsteal::PublicationOrders>().test);
+  CHECK_FALSE(sound.rc11);
+  CHECK_FALSE(sound.rc11_lb);
+  CHECK_FALSE(sound.armv8);
+  CHECK_FALSE(sound.armv8_ldapr);
+  // Under C++ each store→load pair needs seq_cst; on ARMv8 STLR/SWPAL then LDAR is ordered anyway, but LDAPR
+  // (the RCpc mapping of an acquire load) is not.
+  const Duplicates w3 =
+      duplicates(ax::reclamation_litmus<PublicationWeakened<Site::kWriterReadStarted, Mo::kAcquire>>().test);
+  CHECK(w3.rc11);
+  CHECK(w3.armv8_ldapr);
+  const Duplicates p2 =
+      duplicates(ax::reclamation_litmus<PublicationWeakened<Site::kPusherReadPublished, Mo::kAcquire>>().test);
+  CHECK(p2.rc11);
+  CHECK(p2.armv8_ldapr);
+  CHECK(duplicates(ax::reclamation_litmus<PublicationWeakened<Site::kWriterPublish, Mo::kAcqRel>>().test).rc11);
+  CHECK(duplicates(ax::reclamation_litmus<PublicationWeakened<Site::kPusherAnnounce, Mo::kRelease>>().test).rc11);
+}
