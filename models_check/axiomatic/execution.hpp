@@ -80,6 +80,7 @@ inline Execution events_of(const LitmusTest& test) {
         case Op::fence: x.events.push_back({EventKind::fence, t, i, -1, &in}); break;
         case Op::fetch_add:
         case Op::exchange:
+        case Op::cas:
           x.events.push_back({EventKind::read, t, i, in.location, &in, true});
           x.events.push_back({EventKind::write, t, i, in.location, &in, true});
           break;
@@ -144,6 +145,10 @@ inline long for_each_candidate(const LitmusTest& test, const std::function<bool(
       if (ev.kind == EventKind::read) {
         if (!value_of(read_source[e])) return false;
         x.value[e] = x.value[read_source[e]];
+        // A cas on its success path reads what it expects; reading anything else is another path.
+        if (ev.instruction != nullptr && ev.instruction->op == Op::cas && x.value[e] != ev.instruction->expected) {
+          return false;
+        }
       } else if (ev.kind == EventKind::write && ev.instruction == nullptr) {
         x.value[e] = initial_value(ev.location);
       } else if (ev.kind == EventKind::write) {

@@ -260,6 +260,18 @@ std::vector<CatalogueEntry> litmus_catalogue() {
   c.push_back(cpp(
       make("C++ fetch_add atomicity", {{fetch_add(x, 1, 0, rlx)}, {fetch_add(x, 1, 1, rlx)}}, {{{0, 0}, {1, 0}}, {}}),
       rc11_paper + " (atomicity)", kForbidden, kForbidden, kForbidden));
+  {
+    const auto cas = [](int expected, int desired, Order o) {
+      Instruction i = fetch_add(x, 0, -1, o);
+      i.op = Op::cas;
+      i.expected = expected;
+      i.value = desired;
+      return i;
+    };
+    // Both compare-exchanges 0 → 1 succeed (each program path is a success path): atomicity forbids it.
+    c.push_back(cpp(make("C++ cas atomicity", {{cas(0, 1, rlx)}, {cas(0, 1, rlx)}}, {{}, {}}),
+                    rc11_paper + " (atomicity)", kForbidden, kForbidden, kForbidden));
+  }
   c.push_back(
       cpp(make("C++ 2+2W rlx", {{store(x, 2, rlx), store(y, 1, rlx)}, {store(y, 2, rlx), store(x, 1, rlx)}}, ww_final),
           rc11_paper, kAllowed, kAllowed, kAllowed));

@@ -124,6 +124,7 @@ int main(int argc, char** argv) {
     const ScenarioTable publication = tabulate(ax::publication_litmus_all());
     const ScenarioTable lock = tabulate(ax::lock_litmus_all());
     const ScenarioTable reclamation = tabulate(ax::reclamation_litmus_all());
+    const ScenarioTable chase_lev = tabulate(ax::chase_lev_litmus_all());
     // The second engine: SPIN on the same programs' ARMv8 instructions, against the axiomatic ARMv8 verdict.
     struct SpinRow {
       std::string scenario, policy;
@@ -241,6 +242,12 @@ int main(int argc, char** argv) {
           "Last tessellator: W2 r0 := exchange(Published, 2); W3 r1 := Started — pusher: P1 Started := 1; P2 r2 := "
           "Published; initially Published = 1. A use after reuse is r0 = 1 ∧ r1 = 0 ∧ r2 = 1.\n\n";
     scenario_table(reclamation, "use after reuse");
+    md << "\n## The Chase–Lev deque (baseline scheduler), policy × model\n\n"
+          "Owner: K2 bottom := 1; K3 fence; K4 r0 := top — thief 1: S5 cas(top, 0 → 1) — thief 2: S1 r1 := top; S2 "
+          "fence; "
+          "S3 r2 := bottom; S5 cas(top, 1 → 2); initially top = 0, bottom = 2. One element returned twice is r0 = 0 ∧ "
+          "r1 = 1 ∧ r2 = 2. Broken:TakeWithoutFence (no K3) is the planted control.\n\n";
+    scenario_table(chase_lev, "element twice");
     if (o.spin) {
       md << "\n## Second engine: SPIN under an operational store model\n\n"
          << (engines_agree ? "Every verdict agrees" : "**A verdict disagrees**")
@@ -297,6 +304,7 @@ int main(int argc, char** argv) {
     doc["publication"] = scenario_json(publication);
     doc["lock"] = scenario_json(lock);
     doc["reclamation"] = scenario_json(reclamation);
+    doc["chase_lev"] = scenario_json(chase_lev);
     report::Json jspin = report::Json::array();
     for (const SpinRow& r : spin_rows) {
       jspin.push_back({{"scenario", r.scenario},

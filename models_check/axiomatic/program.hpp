@@ -21,8 +21,10 @@
 namespace frontsteal::axiomatic {
 
 enum class Order : std::uint8_t { relaxed, acquire, release, acq_rel, seq_cst };
-enum class Op : std::uint8_t { load, store, fetch_add, exchange, fence };  // exchange: SWP / atomic exchange
-enum class ArmFence : std::uint8_t { none, full, load, store };            // DMB ISH (SY), DMB ISHLD, DMB ISHST
+// exchange: SWP / atomic exchange. cas: a compare-exchange on its success path (it reads `expected` and writes
+// `value`; a candidate in which it reads anything else is not an execution of this program).
+enum class Op : std::uint8_t { load, store, fetch_add, exchange, cas, fence };
+enum class ArmFence : std::uint8_t { none, full, load, store };  // DMB ISH (SY), DMB ISHLD, DMB ISHST
 
 struct ArmAccess {
   bool acquire = false;     // LDAR / LDADDA / LDADDAL: the read is an A
@@ -35,7 +37,8 @@ struct ArmAccess {
 struct Instruction {
   Op op = Op::load;
   int location = -1;  // index into LitmusTest::locations; −1 for fences
-  int value = 0;      // the value a store or an exchange writes, or a fetch_add's operand
+  int value = 0;      // the value a store, an exchange or a cas writes, or a fetch_add's operand
+  int expected = 0;   // cas: the value it must read
   int reg = -1;       // load / fetch_add: the register that receives the value read (−1: unused)
   Order order = Order::relaxed;
   ArmAccess arm;
@@ -89,9 +92,10 @@ inline LitmusTest compile_to_armv8(LitmusTest test, bool use_stadd = true, bool 
         case Op::store: in.arm.release = rel; break;
         case Op::fetch_add:
         case Op::exchange:
+        case Op::cas:
           in.arm.acquire = acq;
           in.arm.release = rel;
-          in.arm.result_unused = use_stadd && in.reg < 0 && !acq;
+          in.arm.result_unused = use_stadd && in.reg < 0 && !acq && in.op != Op::cas;  // CAS has no ST form
           break;
         case Op::fence: in.arm.fence = in.order == Order::acquire ? ArmFence::load : ArmFence::full; break;
       }

@@ -84,7 +84,8 @@ inline std::string to_promela(const LitmusTest& t) {
             << "] - 1] :: else -> reg[" << in.reg << "] = mem[" << l << "] fi\n  }\n";
           break;
         case Op::fetch_add:
-        case Op::exchange: {
+        case Op::exchange:
+        case Op::cas: {  // (a cas is written as an exchange: the programs sent here have none)
           const bool far = in.arm.result_unused;
           if (in.arm.release) p << drain_all();
           if (far && in.op == Op::fetch_add) {

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/chase_lev_policies.hpp"
 #include "core/policies.hpp"
 #include "core/publication_policies.hpp"
 #include "core/site.hpp"
@@ -252,6 +253,47 @@ ProtocolLitmus reclamation_litmus() {
   t.initial = {1, 0};
   t.final_state = {{{0, 1}, {1, 0}, {2, 1}}, {}};
   return {std::string(Policy::kName), Policy::kContract, t};
+}
+
+// The Chase–Lev deque's take against a steal (chase_lev_deque.hpp), two elements (top = 0, bottom = 2): a first
+// thief has read top = 0 and claims index 0 (S5); the owner takes from the bottom; a second thief reads top,
+// then bottom, and claims index 1.
+//     owner                       thief 1                  thief 2
+//     K2  bottom := 1             S5  cas(top, 0 → 1)      S1  r1 := top
+//     K3  fence                                            S2  fence
+//     K4  r0 := top                                        S3  r2 := bottom
+//                                                          S5  cas(top, 1 → 2)
+// Asked: r0 = 0 ∧ r1 = 1 ∧ r2 = 2 — the owner saw top = 0 < 1, so it takes index 1 without a CAS, while the
+// second thief saw top = 1 < bottom = 2 and claims index 1 too: one element returned twice.
+template <class Policy>
+ProtocolLitmus chase_lev_litmus() {
+  constexpr int top = 0, bottom = 1;
+  const auto at = site_access<Policy>;
+  const auto fence_at = [](Site s, std::vector<Instruction>& thread) { push_site_fence<Policy>(s, thread); };
+  const auto cas = [&](int expected, int desired) {
+    Instruction i = at(Op::cas, Site::kStealClaim, top, desired, -1);
+    i.expected = expected;
+    return i;
+  };
+  std::vector<Instruction> owner{at(Op::store, Site::kTakeReserveBottom, bottom, 1, -1)};
+  fence_at(Site::kTakeFence, owner);
+  owner.push_back(at(Op::load, Site::kTakeReadTop, top, 0, 0));
+  std::vector<Instruction> thief2{at(Op::load, Site::kStealReadTop, top, 0, 1)};
+  fence_at(Site::kStealFence, thief2);
+  thief2.push_back(at(Op::load, Site::kStealReadBottom, bottom, 0, 2));
+  thief2.push_back(cas(1, 2));
+  LitmusTest t;
+  t.name = "Chase-Lev take/steal (" + std::string(Policy::kName) + ")";
+  t.locations = {"top", "bottom"};
+  t.registers = {"owner.t", "thief2.t", "thief2.b"};
+  t.threads = {owner, {cas(0, 1)}, thief2};
+  t.initial = {0, 2};
+  t.final_state = {{{0, 0}, {1, 1}, {2, 2}}, {}};
+  return {std::string(Policy::kName), Policy::kContract, t};
+}
+
+inline std::vector<ProtocolLitmus> chase_lev_litmus_all() {
+  return {chase_lev_litmus<ChaseLevOrders>(), chase_lev_litmus<BrokenTakeWithoutFence>()};
 }
 
 inline std::vector<ProtocolLitmus> lock_litmus_all() {

@@ -214,3 +214,14 @@ TEST_CASE("reclamation: no use after reuse, each of W2, W3, P1, P2 below seq_cst
   CHECK(duplicates(ax::reclamation_litmus<PublicationWeakened<Site::kWriterPublish, Mo::kAcqRel>>().test).rc11);
   CHECK(duplicates(ax::reclamation_litmus<PublicationWeakened<Site::kPusherAnnounce, Mo::kRelease>>().test).rc11);
 }
+
+TEST_CASE("Chase-Lev: take against two steals returns no element twice, without K3 it does", "[axiomatic]") {
+  const Duplicates sound = duplicates(ax::chase_lev_litmus<frontsteal::ChaseLevOrders>().test);
+  CHECK_FALSE(sound.rc11);
+  CHECK_FALSE(sound.rc11_lb);
+  CHECK_FALSE(sound.armv8);
+  CHECK_FALSE(sound.armv8_ldapr);
+  const Duplicates broken = duplicates(ax::chase_lev_litmus<frontsteal::BrokenTakeWithoutFence>().test);
+  CHECK(broken.rc11);
+  CHECK(broken.armv8);
+}
