@@ -48,26 +48,16 @@ Piece dense_piece(std::mt19937_64& rng, int outer_vertices, int holes) {
   return piece;
 }
 
-struct Outcome {
-  bool accepted;
-  ts::TilingVerdict verdict;
-  CoverageReport coverage;
-  std::size_t triangles;
+struct Outcome : PieceCheck {
+  bool accepted = false;
 };
 
 Outcome triangulate_and_check(const Piece& piece, std::mt19937_64& rng, bool drop_first = false) {
   std::vector<std::uint32_t> tris;
-  const bool accepted = ts::triangulate_constrained(piece.outer, piece.holes, tris);
+  Outcome o;
+  o.accepted = ts::triangulate_constrained(piece.outer, piece.holes, tris);
   if (drop_first && tris.size() >= 3) tris.erase(tris.begin(), tris.begin() + 3);
-  ts::TilingAudit audit;
-  const auto position = [&](std::uint32_t id) { return piece.positions[id]; };
-  Outcome o{accepted, audit.check(piece.outer, piece.holes, tris, position, 1e-14), {}, tris.size() / 3};
-  std::vector<std::array<glm::dvec2, 3>> corners;
-  for (std::size_t t = 0; t < tris.size(); t += 3)
-    corners.push_back({position(tris[t]), position(tris[t + 1]), position(tris[t + 2])});
-  std::vector<std::vector<glm::dvec2>> rings{ring_points(piece.outer)};
-  for (const auto& h : piece.holes) rings.push_back(ring_points(h));
-  o.coverage = probe_coverage(corners, rings, {0, 0}, {1, 1}, rng, 400, 1e-9);
+  static_cast<PieceCheck&>(o) = check_piece(piece, tris, rng);
   return o;
 }
 

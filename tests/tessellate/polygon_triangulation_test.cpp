@@ -44,11 +44,7 @@ Piece cell_with_holes(std::mt19937_64& rng, int holes) {
   return piece;
 }
 
-struct Outcome {
-  ts::TilingVerdict verdict;
-  CoverageReport coverage;
-  std::size_t triangles;
-};
+using Outcome = PieceCheck;
 
 Outcome triangulate_and_check(const Piece& piece, ts::BridgeCopy copy, std::mt19937_64& rng, bool drop_first = false) {
   ts::PolygonRing ring = piece.outer;
@@ -57,16 +53,7 @@ Outcome triangulate_and_check(const Piece& piece, ts::BridgeCopy copy, std::mt19
   std::vector<std::uint32_t> tris, next, prev;
   ts::clip_ears(ring, tris, next, prev);
   if (drop_first) tris.erase(tris.begin(), tris.begin() + 3);
-  ts::TilingAudit audit;
-  const auto position = [&](std::uint32_t id) { return piece.positions[id]; };
-  Outcome o{audit.check(piece.outer, piece.holes, tris, position, 1e-14), {}, tris.size() / 3};
-  std::vector<std::array<glm::dvec2, 3>> corners;
-  for (std::size_t t = 0; t < tris.size(); t += 3)
-    corners.push_back({position(tris[t]), position(tris[t + 1]), position(tris[t + 2])});
-  std::vector<std::vector<glm::dvec2>> rings{ring_points(piece.outer)};
-  for (const auto& h : piece.holes) rings.push_back(ring_points(h));
-  o.coverage = probe_coverage(corners, rings, {0, 0}, {1, 1}, rng, 400, 1e-9);
-  return o;
+  return check_piece(piece, tris, rng);
 }
 
 }  // namespace

@@ -24,6 +24,14 @@ Duplicates duplicates(const ax::LitmusTest& t) {
           ax::check(ax::compile_to_armv8(t, true, true), ax::Model::armv8).allowed};
 }
 
+// The bad outcome is unreachable under every model.
+void check_forbidden_everywhere(const Duplicates& d) {
+  CHECK_FALSE(d.rc11);
+  CHECK_FALSE(d.rc11_lb);
+  CHECK_FALSE(d.armv8);
+  CHECK_FALSE(d.armv8_ldapr);
+}
+
 // Minimal with the fence at `Weak` replaced by `To`.
 template <Site Weak, Fence To>
 struct MinimalWeakened : frontsteal::Minimal {
@@ -38,10 +46,7 @@ TEST_CASE("exactly-once policies forbid the handshake's duplicate under every mo
     if (p.contract != frontsteal::Contract::kExactlyOnce) continue;
     const Duplicates d = duplicates(p.test);
     INFO(p.policy);
-    CHECK_FALSE(d.rc11);
-    CHECK_FALSE(d.rc11_lb);
-    CHECK_FALSE(d.armv8);
-    CHECK_FALSE(d.armv8_ldapr);
+    check_forbidden_everywhere(d);
   }
 }
 
@@ -104,10 +109,7 @@ TEST_CASE("termination: Minimal's relaxed join lets an idle worker quit early un
       CHECK(early_quit.armv8);
       CHECK(early_quit.armv8_ldapr);
     } else {
-      CHECK_FALSE(early_quit.rc11);
-      CHECK_FALSE(early_quit.rc11_lb);
-      CHECK_FALSE(early_quit.armv8);
-      CHECK_FALSE(early_quit.armv8_ldapr);
+      check_forbidden_everywhere(early_quit);
     }
   }
 }
@@ -141,10 +143,7 @@ struct PublicationWeakened : frontsteal::PublicationOrders {
 TEST_CASE("publication: no torn component under any model, W1, W2 and P2 each needed", "[axiomatic]") {
   using frontsteal::Mo;
   const Duplicates sound = duplicates(ax::publication_litmus<frontsteal::PublicationOrders>().test);
-  CHECK_FALSE(sound.rc11);
-  CHECK_FALSE(sound.rc11_lb);
-  CHECK_FALSE(sound.armv8);
-  CHECK_FALSE(sound.armv8_ldapr);
+  check_forbidden_everywhere(sound);
   // W1 without its acquire: the last tessellator does not acquire A's triangles (C++; on ARMv8 the branch on the
   // count-down and the exchange's release keep them ordered, so only C++ shows it).
   CHECK(duplicates(ax::publication_litmus<PublicationWeakened<Site::kWriterCountDown, Mo::kRelease>>().test).rc11);
@@ -181,10 +180,7 @@ TEST_CASE("the lock passes End from thief to thief under every policy, L2 acquir
   for (const ax::ProtocolLitmus& p : ax::lock_litmus_all()) {
     const Duplicates d = duplicates(p.test);
     INFO(p.policy);
-    CHECK_FALSE(d.rc11);
-    CHECK_FALSE(d.rc11_lb);
-    CHECK_FALSE(d.armv8);
-    CHECK_FALSE(d.armv8_ldapr);
+    check_forbidden_everywhere(d);
   }
   for (const Duplicates d :
        {duplicates(ax::lock_litmus<MinimalOrderWeakened<Site::kLockAcquire, Mo::kRelaxed>>().test),
@@ -197,10 +193,7 @@ TEST_CASE("the lock passes End from thief to thief under every policy, L2 acquir
 TEST_CASE("reclamation: no use after reuse, each of W2, W3, P1, P2 below seq_cst lets it happen", "[axiomatic]") {
   using frontsteal::Mo;
   const Duplicates sound = duplicates(ax::reclamation_litmus<frontsteal::PublicationOrders>().test);
-  CHECK_FALSE(sound.rc11);
-  CHECK_FALSE(sound.rc11_lb);
-  CHECK_FALSE(sound.armv8);
-  CHECK_FALSE(sound.armv8_ldapr);
+  check_forbidden_everywhere(sound);
   // Under C++ each store→load pair needs seq_cst; on ARMv8 STLR/SWPAL then LDAR is ordered anyway, but LDAPR
   // (the RCpc mapping of an acquire load) is not.
   const Duplicates w3 =
@@ -217,10 +210,7 @@ TEST_CASE("reclamation: no use after reuse, each of W2, W3, P1, P2 below seq_cst
 
 TEST_CASE("Chase-Lev: take against two steals returns no element twice, without K3 it does", "[axiomatic]") {
   const Duplicates sound = duplicates(ax::chase_lev_litmus<frontsteal::ChaseLevOrders>().test);
-  CHECK_FALSE(sound.rc11);
-  CHECK_FALSE(sound.rc11_lb);
-  CHECK_FALSE(sound.armv8);
-  CHECK_FALSE(sound.armv8_ldapr);
+  check_forbidden_everywhere(sound);
   const Duplicates broken = duplicates(ax::chase_lev_litmus<frontsteal::BrokenTakeWithoutFence>().test);
   CHECK(broken.rc11);
   CHECK(broken.armv8);
