@@ -10,7 +10,7 @@
 # build/release's executables. Plots: run with --no-plot there; `gnuplot frontsteal.gp` in each folder draws them.
 #
 # usage: run_study_16core.sh BIN_DIR OUT_DIR [--passes N] [--threads L] [--round-frames F]
-#        (defaults: the committed run: 4 passes, P = 1,4,16, rounds of 2 frames)
+#        (defaults: the committed run: 4 passes, P = 1,2,4,8,16, rounds of 2 frames)
 set -uo pipefail
 
 if [[ $# -lt 2 || $1 == --help || $1 == -h ]]; then
@@ -20,7 +20,7 @@ fi
 bin=$(cd "$1" && pwd) || { echo "run_study_16core.sh: BIN_DIR $1 does not exist" >&2; exit 2; }
 out=$2
 shift 2
-passes=4 threads=1,4,16 round_frames=2
+passes=4 threads=1,2,4,8,16 round_frames=2
 while [[ $# -gt 0 ]]; do
   case $1 in
     --passes) passes=$2; shift 2 ;;

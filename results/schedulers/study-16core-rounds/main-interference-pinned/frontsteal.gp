@@ -1,9 +1,9 @@
-# gnuplot script written by frontsteal; run from main-interference-pinned: gnuplot frontsteal.gp
+# gnuplot script written by frontsteal; run from /tmp/study/main-interference-pinned: gnuplot frontsteal.gp
 set terminal pngcairo size 1200,760 font 'sans,10'
 set key outside right top
 set grid
 set output 'frontsteal-speedup.png'
-set title "Paired speed-up over the serial loop (measured; geometric mean of per-round T1/T_P, 95 % interval; open marks: not decided): plant:15906, 15906 surfaces\nIntel(R) Xeon(R) Processor, 16 hardware threads; 120 rounds"
+set title "Paired speed-up over the serial loop (measured; per-round T1 / T(P), 95 % interval; open marks: not decided): plant:15906, 15906 surfaces\nIntel(R) Xeon(R) Processor, 16 hardware threads; 120 rounds per comparison"
 set xlabel 'workers P'
 set ylabel 'speed-up (T1 / T_P)'
 set xrange [0.5:16.5]
@@ -14,7 +14,7 @@ plot for [i=0:13] 'frontsteal-speedup.dat' index i using 1:2 with lines lt 1+i%8
   for [i=0:13] 'frontsteal-speedup.dat' index i using 1:6 with points lt 1+i%8 pt 6 ps 1.5 notitle, \
   (x <= 16 ? x : 16) with lines dashtype 2 lc 'black' title 'ideal'
 set output 'frontsteal-verdicts.png'
-set title "Every scheduler against queue-mutex at the same P (measured): geometric mean of per-round T/T_queue, 95 % interval; shaded: the +-2.0 % margin\nIntel(R) Xeon(R) Processor, 16 hardware threads; 120 rounds"
+set title "Every scheduler against queue-mutex at the same P (measured): per-round time ratio to queue-mutex, 95 % interval; shaded: the +-2.0 % margin\nIntel(R) Xeon(R) Processor, 16 hardware threads; 120 rounds per comparison"
 set xlabel 'time relative to queue-mutex (< 1: faster)'
 unset ylabel
 set ytics ("P=16 round-robin" -1, "P=16 spatial-annealing" -2, "P=16 spatial-morton" -3, "P=16 moodycamel-queue" -4, "P=16 counter-atomic" -5, "P=16 stealing/SeqCst" -6, "P=16 stealing/Fenced" -7, "P=16 stealing/Minimal" -8, "P=16 stealing/Asymmetric" -9, "P=16 chase-lev" -10, "P=16 tbb-affinity" -11, "P=16 openmp-dynamic" -12, "P=16 openmp-static-steal" -13) font 'sans,8'
