@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "models_check/axiomatic/litmus_certificate.hpp"
 #include "models_check/axiomatic/protocol_litmus.hpp"
 #include "models_check/axiomatic/spin_runner.hpp"
 #include "models_check/axiomatic/validation.hpp"
@@ -120,11 +121,16 @@ int main(int argc, char** argv) {
       return table;
     };
     const ScenarioTable handshake = tabulate(ax::handshake_litmus_all());
+    const ScenarioTable reread = tabulate(ax::reread_litmus_all());
     const ScenarioTable termination = tabulate(ax::termination_litmus_all());
     const ScenarioTable publication = tabulate(ax::publication_litmus_all());
     const ScenarioTable lock = tabulate(ax::lock_litmus_all());
     const ScenarioTable reclamation = tabulate(ax::reclamation_litmus_all());
     const ScenarioTable chase_lev = tabulate(ax::chase_lev_litmus_all());
+    const ScenarioTable chase_lev_push = tabulate(ax::chase_lev_push_litmus_all());
+    const ax::LitmusCertificate candidate =
+        ax::certify_on_stealing_paths(frontsteal::model::table_of<ax::MinimalOrderedJoin>());
+    const ScenarioTable chase_lev_last = tabulate(ax::chase_lev_last_litmus_all());
     // The second engine: SPIN on the same programs' ARMv8 instructions, against the axiomatic ARMv8 verdict.
     struct SpinRow {
       std::string scenario, policy;
@@ -160,9 +166,11 @@ int main(int argc, char** argv) {
       }
     }
     bool exactly_once_holds = true;
-    for (const auto& [p, cells] : handshake) {
-      for (const Cell& c : cells) {
-        if (p.contract == frontsteal::Contract::kExactlyOnce && c.reached) exactly_once_holds = false;
+    for (const ScenarioTable* table : {&handshake, &reread}) {
+      for (const auto& [p, cells] : *table) {
+        for (const Cell& c : cells) {
+          if (p.contract == frontsteal::Contract::kExactlyOnce && c.reached) exactly_once_holds = false;
+        }
       }
     }
     const bool passed = disagreements == 0 && every_defect_caught && exactly_once_holds && engines_agree;
@@ -218,6 +226,13 @@ int main(int argc, char** argv) {
           "r0 = 0 ∧ r1 = 0 (both process the item). Exactly-once policies must forbid it under every model; "
        << (exactly_once_holds ? "they do." : "**one does not** (counterexample below).") << "\n\n";
     scenario_table(handshake, "duplicate");
+    md << "\n## The thief's re-read after its wait, policy × model\n\n"
+          "Owner (Front = 1): O1 ListTransient := 1; F1; O2 r0 := End; (branch on r0) O3 Front := 2; O4 "
+          "ListTransient := 0 — thief (mid = 1): T3 End := 1; F2; T4 r1 := ListTransient; T5 r2 := Front; initially "
+          "End = 2 (protocol_litmus.hpp). A duplicate is r0 = 2 ∧ r1 = 0 ∧ r2 = 1: the owner claimed item 1 with the "
+          "old End and the thief, past its wait, kept it too. Exactly-once policies must forbid it under every "
+          "model. The one-step weakenings of O4 and T4 are in tests/models_check/axiomatic/.\n\n";
+    scenario_table(reread, "duplicate");
     md << "\n## Termination, policy × model\n\n"
           "Thief A1 Active += 1; T3 End := mid; F2; T4 — victim O1; F1; O2 r0 := End; (branch on r0) O4; A2 Active -= "
           "1 "
@@ -226,6 +241,30 @@ int main(int argc, char** argv) {
           "and stopped looking for work. Every item still runs exactly once (the thief holds its share); the idle "
           "worker just stops helping. \"Minimal + T3 release + O2 acquire\" is a candidate (not core's Minimal).\n\n";
     scenario_table(termination, "early quit");
+    md << "\n### The candidate's certificate on the stealing paths\n\n"
+       << "Every one-step weakening of \"" << candidate.policy
+       << "\" (models_check/table_policy.hpp's lattice) at a site that the handshake, re-read, termination or lock "
+          "path contains, and the paths and models under which the weakened policy reaches that path's bad outcome "
+          "(litmus_certificate.hpp). **"
+       << (candidate.certified() ? "Certified" : "NOT certified")
+       << "** on these paths: the candidate itself reaches no bad outcome under any model"
+       << (candidate.base_failures.empty() ? "" : " (**it does**)")
+       << ", and every weakening the paths reach is killed under C++ with load buffering. Weakenings at sites no "
+          "path contains (the frame loop's E-sites, installs, the lock probe, the thief's first reads) are left to "
+          "Relacy's certificate (modelcheck.md).\n\n"
+       << "| site | weakening | paths holding the site | killed by (path: model) |\n|---|---|---|---|\n";
+    for (const ax::WeakeningRow& r : candidate.rows) {
+      if (r.paths.empty()) continue;
+      md << "| " << r.site << " | " << r.from << " → " << r.to << " | ";
+      for (std::size_t k = 0; k < r.paths.size(); ++k) md << (k ? ", " : "") << r.paths[k];
+      md << " | ";
+      for (std::size_t k = 0; k < r.kills.size(); ++k) md << (k ? "; " : "") << r.kills[k];
+      if (r.kills.empty()) md << "**survives**";
+      md << " |\n";
+    }
+    std::size_t not_reached = 0;
+    for (const ax::WeakeningRow& r : candidate.rows) not_reached += r.paths.empty() ? 1 : 0;
+    md << "\n" << not_reached << " further weakenings are at sites no path contains.\n";
     md << "\n## Publication (greedy rendering), policy × model\n\n"
           "Tessellator A: triangles A := 1; W1 Done += 1 — tessellator B: triangles B := 1; W1 r3 := Done += 1; "
           "(branch: "
@@ -248,6 +287,17 @@ int main(int argc, char** argv) {
           "S3 r2 := bottom; S5 cas(top, 1 → 2); initially top = 0, bottom = 2. One element returned twice is r0 = 0 ∧ "
           "r1 = 1 ∧ r2 = 2. Broken:TakeWithoutFence (no K3) is the planted control.\n\n";
     scenario_table(chase_lev, "element twice");
+    md << "\n### Chase–Lev's push against a steal\n\n"
+          "Owner: B3 buffer[0] := 1; B4 release fence; B5 bottom := 1 — thief: S1 r0 := top; S2 fence; S3 r1 := "
+          "bottom; (branch) S4 r2 := buffer[0]; initially all 0. A steal of an unwritten element is r1 = 1 ∧ r2 = 0. "
+          "Broken:PushWithoutRelease (no B4) is the planted control.\n\n";
+    scenario_table(chase_lev_push, "unwritten element");
+    md << "\n### Chase–Lev's race for the last element\n\n"
+          "Owner: K2 bottom := 0; K3 fence; K4 r0 := top; (branch: last) K6 cas(top, 0 → 1) — thief: S1 r1 := top; "
+          "S2 fence; S3 r2 := bottom; (branch) S5 cas(top, 0 → 1); initially top = 0, bottom = 1; both CASes on their "
+          "success path. The element returned twice is r0 = 0 ∧ r1 = 0 ∧ r2 = 1. Broken:TakeLastWithoutCas (no K6) "
+          "is the planted control.\n\n";
+    scenario_table(chase_lev_last, "element twice");
     if (o.spin) {
       md << "\n## Second engine: SPIN under an operational store model\n\n"
          << (engines_agree ? "Every verdict agrees" : "**A verdict disagrees**")
@@ -300,11 +350,27 @@ int main(int argc, char** argv) {
       return rows;
     };
     doc["handshake"] = scenario_json(handshake);
+    doc["reread"] = scenario_json(reread);
     doc["termination"] = scenario_json(termination);
+    report::Json cert_rows = report::Json::array();
+    for (const ax::WeakeningRow& r : candidate.rows) {
+      cert_rows.push_back({{"site", r.site},
+                           {"from", r.from},
+                           {"to", r.to},
+                           {"paths", r.paths},
+                           {"killed_by", r.kills},
+                           {"killed_under_cpp_with_lb", r.killed_under_cpp}});
+    }
+    doc["candidate_certificate"] = {{"policy", candidate.policy},
+                                    {"certified", candidate.certified()},
+                                    {"base_failures", candidate.base_failures},
+                                    {"weakenings", cert_rows}};
     doc["publication"] = scenario_json(publication);
     doc["lock"] = scenario_json(lock);
     doc["reclamation"] = scenario_json(reclamation);
     doc["chase_lev"] = scenario_json(chase_lev);
+    doc["chase_lev_push"] = scenario_json(chase_lev_push);
+    doc["chase_lev_last"] = scenario_json(chase_lev_last);
     report::Json jspin = report::Json::array();
     for (const SpinRow& r : spin_rows) {
       jspin.push_back({{"scenario", r.scenario},
@@ -320,7 +386,7 @@ int main(int argc, char** argv) {
     std::cout << (passed ? "PASSED" : "FAILED") << ": " << rows.size() - static_cast<std::size_t>(disagreements)
               << " of " << rows.size()
               << " verdicts agree; planted defects caught: " << (every_defect_caught ? "all" : "NOT all")
-              << "; handshake exactly-once under every model: " << (exactly_once_holds ? "yes" : "NO")
+              << "; handshake and re-read exactly-once under every model: " << (exactly_once_holds ? "yes" : "NO")
               << ". Report: " << dir.file("litmus-validation.md").string() << "\n";
     if (!o.quiet) {
       for (const auto& r : rows) {

@@ -107,6 +107,49 @@ ProtocolLitmus handshake_litmus() {
   return {std::string(Policy::kName), Policy::kContract, t};
 }
 
+// The thief's re-read (stealing_protocol.hpp's try_steal after T4): the victim claims its last item with the
+// old End while the thief lowers End; the thief waits until ListTransient is 0 and re-reads Front to skip what
+// the victim claimed.
+//     owner (Front = 1, claims item 1)     thief (holds LockList, mid = 1)
+//     O1  ListTransient := 1               T3  End := 1
+//     F1  fence                            F2  fence
+//     O2  r0 := End                        T4  r1 := ListTransient
+//     (r0 = 2 > Front: after a branch:)    T5  r2 := Front
+//     O3  Front := 2
+//     O4  ListTransient := 0
+// Initially ListTransient = 0, End = 2, Front = 1. Asked: r0 = 2 ∧ r1 = 0 ∧ r2 = 1 — the owner claimed item 1
+// with the old End, and the thief, past its wait, still read Front = 1, so it keeps item 1 too (a duplicate).
+// T4 reading the initial 0 is the handshake's case (F1/F2); T4 reading O4's 0 is this path's: O4 must publish
+// O3 to T5 (O4 release, T4 acquire). T4 is a spin loop in the code; its exiting iteration is the load here.
+template <class Policy>
+ProtocolLitmus reread_litmus() {
+  constexpr int transient = 0, end = 1, front = 2;
+  const auto at = site_access<Policy>;
+  const auto fence_at = [](Site s, std::vector<Instruction>& thread) { push_site_fence<Policy>(s, thread); };
+  std::vector<Instruction> owner{at(Op::store, Site::kOwnerAnnounce, transient, 1, -1)};
+  fence_at(Site::kOwnerStoreLoadFence, owner);
+  const int read_end = static_cast<int>(owner.size());
+  owner.push_back(at(Op::load, Site::kOwnerReadEnd, end, 0, 0));
+  Instruction claim = at(Op::store, Site::kOwnerClaimFront, front, 2, -1);
+  claim.ctrl_from = read_end;  // `if (f >= end)`: the branch on O2
+  owner.push_back(claim);
+  Instruction retract = at(Op::store, Site::kOwnerRetract, transient, 0, -1);
+  retract.ctrl_from = read_end;
+  owner.push_back(retract);
+  std::vector<Instruction> thief{at(Op::store, Site::kThiefShrinkEnd, end, 1, -1)};
+  fence_at(Site::kThiefStoreLoadFence, thief);
+  thief.push_back(at(Op::load, Site::kThiefAwaitTransient, transient, 0, 1));
+  thief.push_back(at(Op::load, Site::kThiefRereadFront, front, 0, 2));
+  LitmusTest t;
+  t.name = "re-read after the wait (" + std::string(Policy::kName) + ")";
+  t.locations = {"ListTransient", "End", "Front"};
+  t.registers = {"owner.e", "thief.t", "thief.front"};
+  t.threads = {owner, thief};
+  t.initial = {0, 2, 1};
+  t.final_state = {{{0, 2}, {1, 0}, {2, 1}}, {}};
+  return {std::string(Policy::kName), Policy::kContract, t};
+}
+
 // Termination (active_workers.hpp, stealing_protocol.hpp's shrink_victim and try_claim): the path on which an idle
 // worker could stop looking for work while a stolen share is held by nobody it counts.
 //     thief                        victim (owner of the list)           idle worker
@@ -292,6 +335,88 @@ ProtocolLitmus chase_lev_litmus() {
   return {std::string(Policy::kName), Policy::kContract, t};
 }
 
+// The Chase–Lev deque's push against a steal (chase_lev_deque.hpp), an empty deque (top = bottom = 0): the owner
+// pushes one element; a thief reads top, then bottom, and reads the element's slot.
+//     owner                       thief
+//     B3  buffer[0] := 1          S1  r0 := top
+//     B4  release fence           S2  fence
+//     B5  bottom := 1             S3  r1 := bottom
+//                                 (r1 > r0: after a branch:)
+//                                 S4  r2 := buffer[0]
+// Asked: r1 = 1 ∧ r2 = 0 — the thief sees the push's bottom but not its element (it would steal garbage).
+template <class Policy>
+ProtocolLitmus chase_lev_push_litmus() {
+  constexpr int top = 0, bottom = 1, buffer = 2;
+  const auto at = site_access<Policy>;
+  const auto fence_at = [](Site s, std::vector<Instruction>& thread) { push_site_fence<Policy>(s, thread); };
+  std::vector<Instruction> owner{at(Op::store, Site::kPushWriteSlot, buffer, 1, -1)};
+  fence_at(Site::kPushReleaseFence, owner);
+  owner.push_back(at(Op::store, Site::kPushPublishBottom, bottom, 1, -1));
+  std::vector<Instruction> thief{at(Op::load, Site::kStealReadTop, top, 0, 0)};
+  fence_at(Site::kStealFence, thief);
+  const int read_bottom = static_cast<int>(thief.size());
+  thief.push_back(at(Op::load, Site::kStealReadBottom, bottom, 0, 1));
+  Instruction read_slot = at(Op::load, Site::kStealReadSlot, buffer, 0, 2);
+  read_slot.ctrl_from = read_bottom;  // `if (t < b)`
+  thief.push_back(read_slot);
+  LitmusTest t;
+  t.name = "Chase-Lev push/steal (" + std::string(Policy::kName) + ")";
+  t.locations = {"top", "bottom", "buffer[0]"};
+  t.registers = {"thief.t", "thief.b", "thief.x"};
+  t.threads = {owner, thief};
+  t.final_state = {{{1, 1}, {2, 0}}, {}};
+  return {std::string(Policy::kName), Policy::kContract, t};
+}
+
+// The race for the last element (one element: top = 0, bottom = 1): the owner's take reserves it and, seeing
+// top = bottom - 1, claims it by a CAS on top (K6); a thief read top and the old bottom and claims it by its
+// own CAS (S5).
+//     owner                           thief
+//     K2  bottom := 0                 S1  r1 := top
+//     K3  fence                       S2  fence
+//     K4  r0 := top                   S3  r2 := bottom
+//     (r0 = 0 = b − 1:) K6 cas(top, 0 → 1)    (r2 > r1:) S5 cas(top, 0 → 1)
+// Asked: r0 = 0 ∧ r1 = 0 ∧ r2 = 1 with both claims succeeding (each CAS is modelled on its success path): the
+// element returned twice. Only the CASes' atomicity forbids it; Broken:TakeLastWithoutCas (no K6) reaches it.
+template <class Policy>
+ProtocolLitmus chase_lev_last_litmus() {
+  constexpr int top = 0, bottom = 1;
+  const auto at = site_access<Policy>;
+  const auto fence_at = [](Site s, std::vector<Instruction>& thread) { push_site_fence<Policy>(s, thread); };
+  const auto cas = [&](Site s, int ctrl) {
+    Instruction i = at(Op::cas, s, top, 1, -1);
+    i.expected = 0;
+    i.ctrl_from = ctrl;
+    return i;
+  };
+  std::vector<Instruction> owner{at(Op::store, Site::kTakeReserveBottom, bottom, 0, -1)};
+  fence_at(Site::kTakeFence, owner);
+  const int read_top = static_cast<int>(owner.size());
+  owner.push_back(at(Op::load, Site::kTakeReadTop, top, 0, 0));
+  if (!has(Policy::defects(), Defect::kTakeLastWithoutCas)) owner.push_back(cas(Site::kTakeClaimLast, read_top));
+  std::vector<Instruction> thief{at(Op::load, Site::kStealReadTop, top, 0, 1)};
+  fence_at(Site::kStealFence, thief);
+  const int read_bottom = static_cast<int>(thief.size());
+  thief.push_back(at(Op::load, Site::kStealReadBottom, bottom, 0, 2));
+  thief.push_back(cas(Site::kStealClaim, read_bottom));
+  LitmusTest t;
+  t.name = "Chase-Lev last element (" + std::string(Policy::kName) + ")";
+  t.locations = {"top", "bottom"};
+  t.registers = {"owner.t", "thief.t", "thief.b"};
+  t.threads = {owner, thief};
+  t.initial = {0, 1};
+  t.final_state = {{{0, 0}, {1, 0}, {2, 1}}, {}};
+  return {std::string(Policy::kName), Policy::kContract, t};
+}
+
+inline std::vector<ProtocolLitmus> chase_lev_push_litmus_all() {
+  return {chase_lev_push_litmus<ChaseLevOrders>(), chase_lev_push_litmus<BrokenPushWithoutRelease>()};
+}
+
+inline std::vector<ProtocolLitmus> chase_lev_last_litmus_all() {
+  return {chase_lev_last_litmus<ChaseLevOrders>(), chase_lev_last_litmus<BrokenTakeLastWithoutCas>()};
+}
+
 inline std::vector<ProtocolLitmus> chase_lev_litmus_all() {
   return {chase_lev_litmus<ChaseLevOrders>(), chase_lev_litmus<BrokenTakeWithoutFence>()};
 }
@@ -304,6 +429,11 @@ inline std::vector<ProtocolLitmus> lock_litmus_all() {
 inline std::vector<ProtocolLitmus> reclamation_litmus_all() { return {reclamation_litmus<PublicationOrders>()}; }
 
 inline std::vector<ProtocolLitmus> publication_litmus_all() { return {publication_litmus<PublicationOrders>()}; }
+
+inline std::vector<ProtocolLitmus> reread_litmus_all() {
+  return {reread_litmus<SeqCst>(), reread_litmus<Fenced>(), reread_litmus<Asymmetric>(), reread_litmus<Minimal>(),
+          reread_litmus<Paper>()};
+}
 
 inline std::vector<ProtocolLitmus> handshake_litmus_all() {
   return {handshake_litmus<SeqCst>(), handshake_litmus<Fenced>(), handshake_litmus<Asymmetric>(),

@@ -1,12 +1,14 @@
 // The handshake litmus (models_check/axiomatic/protocol_litmus.hpp) under the axiomatic checker: every
 // exactly-once policy forbids the duplicate under RC11, RC11 without no-thin-air and ARMv8 (both acquire
 // mappings); Paper's duplicate is allowed where the literature says; and each one-step weakening of Minimal's
-// fences is killed (the duplicate becomes reachable), so the verdicts above are not vacuous.
+// fences is killed (the duplicate becomes reachable), so the verdicts above are not vacuous; then the other paths
+// (termination, the re-read, publication, the lock, reclamation, Chase–Lev take, push and last element) likewise.
 #include "models_check/axiomatic/protocol_litmus.hpp"
 
 #include <catch2/catch.hpp>
 
 #include "models_check/axiomatic/checker.hpp"
+#include "models_check/axiomatic/litmus_certificate.hpp"
 
 namespace ax = frontsteal::axiomatic;
 using frontsteal::Fence;
@@ -190,6 +192,26 @@ TEST_CASE("the lock passes End from thief to thief under every policy, L2 acquir
   }
 }
 
+TEST_CASE("the re-read after the wait: no duplicate for exactly-once policies, O4 release and T4 acquire each needed",
+          "[axiomatic]") {
+  using frontsteal::Mo;
+  for (const ax::ProtocolLitmus& p : ax::reread_litmus_all()) {
+    if (p.contract != frontsteal::Contract::kExactlyOnce) continue;
+    INFO(p.policy);
+    check_forbidden_everywhere(duplicates(p.test));
+  }
+  // Without O4's release the claim (O3) and the retraction (O4) may reorder; without T4's acquire the re-read
+  // (T5) may be satisfied before the wait ends: either way the thief keeps the item the owner claimed.
+  for (const Duplicates d :
+       {duplicates(ax::reread_litmus<MinimalOrderWeakened<Site::kOwnerRetract, Mo::kRelaxed>>().test),
+        duplicates(ax::reread_litmus<MinimalOrderWeakened<Site::kThiefAwaitTransient, Mo::kRelaxed>>().test)}) {
+    CHECK(d.rc11);
+    CHECK(d.rc11_lb);
+    CHECK(d.armv8);
+    CHECK(d.armv8_ldapr);
+  }
+}
+
 TEST_CASE("reclamation: no use after reuse, each of W2, W3, P1, P2 below seq_cst lets it happen", "[axiomatic]") {
   using frontsteal::Mo;
   const Duplicates sound = duplicates(ax::reclamation_litmus<frontsteal::PublicationOrders>().test);
@@ -214,4 +236,69 @@ TEST_CASE("Chase-Lev: take against two steals returns no element twice, without 
   const Duplicates broken = duplicates(ax::chase_lev_litmus<frontsteal::BrokenTakeWithoutFence>().test);
   CHECK(broken.rc11);
   CHECK(broken.armv8);
+}
+
+namespace {
+
+// ChaseLevOrders with the order at `Weak` replaced by `To`.
+template <Site Weak, frontsteal::Mo To>
+struct ChaseLevWeakened : frontsteal::ChaseLevOrders {
+  static constexpr frontsteal::Mo order(Site s) noexcept {
+    return s == Weak ? To : frontsteal::ChaseLevOrders::order(s);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("Chase-Lev push: no steal of an unwritten element, B4 and S3's acquire each needed", "[axiomatic]") {
+  using frontsteal::Mo;
+  check_forbidden_everywhere(duplicates(ax::chase_lev_push_litmus<frontsteal::ChaseLevOrders>().test));
+  for (const Duplicates d :
+       {duplicates(ax::chase_lev_push_litmus<frontsteal::BrokenPushWithoutRelease>().test),
+        duplicates(ax::chase_lev_push_litmus<ChaseLevWeakened<Site::kStealReadBottom, Mo::kRelaxed>>().test)}) {
+    CHECK(d.rc11);
+    CHECK(d.rc11_lb);
+    CHECK(d.armv8);  // a branch orders no later load on ARMv8 (ctrl;[W] only)
+    CHECK(d.armv8_ldapr);
+  }
+}
+
+TEST_CASE("Chase-Lev's last element: the two CASes let one side win, without K6 both take it", "[axiomatic]") {
+  check_forbidden_everywhere(duplicates(ax::chase_lev_last_litmus<frontsteal::ChaseLevOrders>().test));
+  const Duplicates broken = duplicates(ax::chase_lev_last_litmus<frontsteal::BrokenTakeLastWithoutCas>().test);
+  CHECK(broken.rc11);
+  CHECK(broken.rc11_lb);
+  CHECK(broken.armv8);
+  CHECK(broken.armv8_ldapr);
+}
+
+TEST_CASE(
+    "the termination candidate is certified on the stealing paths: every one-step weakening they reach is "
+    "killed under C++ with load buffering",
+    "[axiomatic]") {
+  const ax::LitmusCertificate c = ax::certify_on_stealing_paths(frontsteal::model::table_of<ax::MinimalOrderedJoin>());
+  CHECK(c.base_failures.empty());
+  int reached = 0;
+  for (const ax::WeakeningRow& r : c.rows) {
+    INFO(r.site << " " << r.from << " -> " << r.to);
+    if (r.paths.empty()) continue;
+    ++reached;
+    CHECK(r.killed_under_cpp);
+  }
+  CHECK(reached >= 8);  // F1, F2, O2, O4, T3, T4, L2, L3
+  CHECK(c.certified());
+}
+
+TEST_CASE("control: the certificate rejects core's Minimal (early quit) and finds SeqCst's redundant orders",
+          "[axiomatic][negative-control]") {
+  const ax::LitmusCertificate minimal =
+      ax::certify_on_stealing_paths(frontsteal::model::table_of<frontsteal::Minimal>());
+  CHECK_FALSE(minimal.base_failures.empty());
+  CHECK_FALSE(minimal.certified());
+  // SeqCst's handshake accesses are seq_cst and its F1/F2 fences too: one step off any one of them is covered by
+  // the rest, so some weakening it reaches survives, and the certificate must say so.
+  const ax::LitmusCertificate seq_cst =
+      ax::certify_on_stealing_paths(frontsteal::model::table_of<frontsteal::SeqCst>());
+  CHECK(seq_cst.base_failures.empty());
+  CHECK_FALSE(seq_cst.certified());
 }
