@@ -41,6 +41,18 @@ struct MinimalWeakened : frontsteal::Minimal {
   static constexpr Fence fence(Site s) noexcept { return s == Weak ? To : frontsteal::Minimal::fence(s); }
 };
 
+// `Base` with the order at `Weak` replaced by `To`.
+template <class Base, Site Weak, frontsteal::Mo To>
+struct OrderWeakened : Base {
+  static constexpr frontsteal::Mo order(Site s) noexcept { return s == Weak ? To : Base::order(s); }
+};
+template <Site Weak, frontsteal::Mo To>
+using MinimalOrderWeakened = OrderWeakened<frontsteal::Minimal, Weak, To>;
+template <Site Weak, frontsteal::Mo To>
+using PublicationWeakened = OrderWeakened<frontsteal::PublicationOrders, Weak, To>;
+template <Site Weak, frontsteal::Mo To>
+using ChaseLevWeakened = OrderWeakened<frontsteal::ChaseLevOrders, Weak, To>;
+
 }  // namespace
 
 TEST_CASE("exactly-once policies forbid the handshake's duplicate under every model", "[axiomatic]") {
@@ -92,11 +104,7 @@ namespace {
 
 // The candidate with one of its two strengthened orders put back to relaxed.
 template <Site Weak>
-struct OrderedJoinWeakened : ax::MinimalOrderedJoin {
-  static constexpr frontsteal::Mo order(Site s) noexcept {
-    return s == Weak ? frontsteal::Mo::kRelaxed : ax::MinimalOrderedJoin::order(s);
-  }
-};
+using OrderedJoinWeakened = OrderWeakened<ax::MinimalOrderedJoin, Weak, frontsteal::Mo::kRelaxed>;
 
 }  // namespace
 
@@ -131,17 +139,6 @@ TEST_CASE("termination: both orders of the candidate are needed under C++, on AR
   CHECK_FALSE(without_acquire.armv8);
 }
 
-namespace {
-
-template <Site Weak, frontsteal::Mo To>
-struct PublicationWeakened : frontsteal::PublicationOrders {
-  static constexpr frontsteal::Mo order(Site s) noexcept {
-    return s == Weak ? To : frontsteal::PublicationOrders::order(s);
-  }
-};
-
-}  // namespace
-
 TEST_CASE("publication: no torn component under any model, W1, W2 and P2 each needed", "[axiomatic]") {
   using frontsteal::Mo;
   const Duplicates sound = duplicates(ax::publication_litmus<frontsteal::PublicationOrders>().test);
@@ -166,15 +163,6 @@ TEST_CASE("publication: no torn component under any model, W1, W2 and P2 each ne
   CHECK(p2.rc11);
   CHECK(p2.armv8);
 }
-
-namespace {
-
-template <Site Weak, frontsteal::Mo To>
-struct MinimalOrderWeakened : frontsteal::Minimal {
-  static constexpr frontsteal::Mo order(Site s) noexcept { return s == Weak ? To : frontsteal::Minimal::order(s); }
-};
-
-}  // namespace
 
 TEST_CASE("the lock passes End from thief to thief under every policy, L2 acquire and L3 release each needed",
           "[axiomatic]") {
@@ -237,18 +225,6 @@ TEST_CASE("Chase-Lev: take against two steals returns no element twice, without 
   CHECK(broken.rc11);
   CHECK(broken.armv8);
 }
-
-namespace {
-
-// ChaseLevOrders with the order at `Weak` replaced by `To`.
-template <Site Weak, frontsteal::Mo To>
-struct ChaseLevWeakened : frontsteal::ChaseLevOrders {
-  static constexpr frontsteal::Mo order(Site s) noexcept {
-    return s == Weak ? To : frontsteal::ChaseLevOrders::order(s);
-  }
-};
-
-}  // namespace
 
 TEST_CASE("Chase-Lev push: no steal of an unwritten element, B4 and S3's acquire each needed", "[axiomatic]") {
   using frontsteal::Mo;
