@@ -20,11 +20,14 @@ namespace sc = frontsteal::sched;
 namespace {
 
 // libgomp is not built for ThreadSanitizer: its barriers are invisible to it, so the TSan build skips these.
+bool skipped_under_tsan() {
 #if defined(__SANITIZE_THREAD__)
-constexpr bool kLibgompInvisible = true;
+  WARN("libgomp is not instrumented for ThreadSanitizer: checked by the release build");
+  return true;
 #else
-constexpr bool kLibgompInvisible = false;
+  return false;
 #endif
+}
 
 long this_thread_tid() { return syscall(SYS_gettid); }
 
@@ -53,10 +56,7 @@ std::vector<long> raw_region(int threads) {
 
 TEST_CASE("control: regions of another size opened from the same thread end and re-create libgomp's threads",
           "[schedulers][openmp][negative-control]") {
-  if (kLibgompInvisible) {
-    WARN("libgomp is not instrumented for ThreadSanitizer: checked by the release build");
-    return;
-  }
+  if (skipped_under_tsan()) return;
   omp_set_dynamic(0);
   const std::vector<long> first = raw_region(3);
   REQUIRE(first[2] != 0);
@@ -68,10 +68,7 @@ TEST_CASE("control: regions of another size opened from the same thread end and 
 
 TEST_CASE("openmp-dynamic keeps its team across frames when teams of other sizes run between them",
           "[schedulers][openmp]") {
-  if (kLibgompInvisible) {
-    WARN("libgomp is not instrumented for ThreadSanitizer: checked by the release build");
-    return;
-  }
+  if (skipped_under_tsan()) return;
   omp_set_dynamic(0);
   auto three = sc::make_openmp_dynamic_scheduler({.workers = 3, .items = 600});
   auto two = sc::make_openmp_dynamic_scheduler({.workers = 2, .items = 600});

@@ -1,4 +1,4 @@
-# gnuplot script written by frontsteal; run from /tmp/s/main: gnuplot frontsteal.gp
+# gnuplot script written by frontsteal; run from main-openmp-driver: gnuplot frontsteal.gp
 set terminal pngcairo size 1200,760 font 'sans,10'
 set key outside right top
 set grid
