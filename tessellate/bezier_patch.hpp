@@ -57,14 +57,23 @@ struct SurfacePoint {
 };
 
 // Bernstein basis B_i^d(t), i = 0..d, and its derivative, by the triangle recurrence (stable on [0,1]).
+// Entries past the degree are not written by bernstein() and never read: the tables are sized for degree 25,
+// and zero-filling 2×26 doubles per call cost more than the recurrence at the usual degrees.
 struct BernsteinTable {
-  std::array<double, kMaxDegree + 1> value{};
-  std::array<double, kMaxDegree + 1> derivative{};
+  std::array<double, kMaxDegree + 1> value;
+  std::array<double, kMaxDegree + 1> derivative;
 };
 
-inline BernsteinTable bernstein(int degree, double t) noexcept {
+namespace detail {
+
+// bernstein() and evaluate() below with the degrees known at compile time where D, M, N > 0 (0: read at run
+// time), so that the common degrees unroll; always inlined, so that evaluate()'s AVX2 clone compiles them for AVX2. The
+// operations and their order are the same either way, so the results are the same bits.
+template <int D>
+[[gnu::always_inline]] inline BernsteinTable bernstein_of(int run_time_degree, double t) noexcept {
+  const int degree = D > 0 ? D : run_time_degree;
   // Degree d-1 values first: B'_i^d = d (B_{i-1}^{d-1} − B_i^{d-1}).
-  std::array<double, kMaxDegree + 1> b{};
+  std::array<double, kMaxDegree + 1> b;  // b[0..d] written before they are read, d = 0..degree-1
   b[0] = 1.0;
   const double s = 1.0 - t;
   for (int d = 1; d < degree; ++d) {
@@ -92,20 +101,45 @@ inline BernsteinTable bernstein(int degree, double t) noexcept {
   return out;
 }
 
-// Position, partial derivatives and unit normal at (u, v), from precomputed basis tables.
-inline SurfacePoint evaluate(const BezierPatch& p, const BernsteinTable& bu, const BernsteinTable& bv) noexcept {
-  glm::dvec4 s(0.0), su(0.0), sv(0.0);
-  for (int i = 0; i <= p.degree_u; ++i) {
-    glm::dvec4 row(0.0), row_dv(0.0);
-    for (int j = 0; j <= p.degree_v; ++j) {
-      const glm::dvec4& h = p.homogeneous(i, j);
+// The sums of evaluate_of in glm::dvec4 (the default), or in a type of four lanes with the same lane-wise + and
+// scalar × (bezier_patch.cpp's GCC vector for its AVX2 clone); lane-wise, either way, so the same bits.
+template <class Lanes4>
+struct HomogeneousSum {
+  [[gnu::always_inline]] static Lanes4 of(const glm::dvec4& h) noexcept {
+    Lanes4 v;
+    __builtin_memcpy(&v, &h, sizeof v);
+    return v;
+  }
+  [[gnu::always_inline]] static glm::dvec4 to_glm(const Lanes4& v) noexcept {
+    glm::dvec4 h;
+    __builtin_memcpy(&h, &v, sizeof h);
+    return h;
+  }
+};
+template <>
+struct HomogeneousSum<glm::dvec4> {
+  static const glm::dvec4& of(const glm::dvec4& h) noexcept { return h; }
+  static const glm::dvec4& to_glm(const glm::dvec4& h) noexcept { return h; }
+};
+
+template <int M, int N, class Lanes4 = glm::dvec4>
+[[gnu::always_inline]] inline SurfacePoint evaluate_of(const BezierPatch& p, const BernsteinTable& bu,
+                                                       const BernsteinTable& bv) noexcept {
+  using Sum = HomogeneousSum<Lanes4>;
+  const int degree_u = M > 0 ? M : p.degree_u, degree_v = N > 0 ? N : p.degree_v;
+  Lanes4 s_sum = Sum::of(glm::dvec4(0.0)), su_sum = s_sum, sv_sum = s_sum;
+  for (int i = 0; i <= degree_u; ++i) {
+    Lanes4 row = Sum::of(glm::dvec4(0.0)), row_dv = row;
+    for (int j = 0; j <= degree_v; ++j) {
+      const Lanes4 h = Sum::of(p.control[static_cast<std::size_t>(i * (degree_v + 1) + j)]);
       row += bv.value[j] * h;
       row_dv += bv.derivative[j] * h;
     }
-    s += bu.value[i] * row;
-    su += bu.derivative[i] * row;
-    sv += bu.value[i] * row_dv;
+    s_sum += bu.value[i] * row;
+    su_sum += bu.derivative[i] * row;
+    sv_sum += bu.value[i] * row_dv;
   }
+  const glm::dvec4 s = Sum::to_glm(s_sum), su = Sum::to_glm(su_sum), sv = Sum::to_glm(sv_sum);
   SurfacePoint out;
   out.position = glm::dvec3(s) / s.w;
   out.du = (glm::dvec3(su) - out.position * su.w) / s.w;  // quotient rule
@@ -116,15 +150,22 @@ inline SurfacePoint evaluate(const BezierPatch& p, const BernsteinTable& bu, con
   return out;
 }
 
-inline SurfacePoint evaluate(const BezierPatch& p, double u, double v) noexcept {
-  SurfacePoint sp = evaluate(p, bernstein(p.degree_u, u), bernstein(p.degree_v, v));
-  if (sp.normal == glm::dvec3(0.0)) {
-    // Collapsed edge: take the normal a hair towards the patch centre, where the surface is regular.
-    const double nu = u + (0.5 - u) * 1e-6;
-    const double nv = v + (0.5 - v) * 1e-6;
-    sp.normal = evaluate(p, bernstein(p.degree_u, nu), bernstein(p.degree_v, nv)).normal;
-  }
-  return sp;
+template <int M, int N, class Lanes4 = glm::dvec4>
+[[gnu::always_inline]] inline SurfacePoint evaluate_at(const BezierPatch& p, double u, double v) noexcept {
+  return evaluate_of<M, N, Lanes4>(p, bernstein_of<M>(p.degree_u, u), bernstein_of<N>(p.degree_v, v));
 }
+
+}  // namespace detail
+
+inline BernsteinTable bernstein(int degree, double t) noexcept { return detail::bernstein_of<0>(degree, t); }
+
+// Position, partial derivatives and unit normal at (u, v), from precomputed basis tables.
+inline SurfacePoint evaluate(const BezierPatch& p, const BernsteinTable& bu, const BernsteinTable& bv) noexcept {
+  return detail::evaluate_of<0, 0>(p, bu, bv);
+}
+
+// Position, partial derivatives and unit normal at (u, v) (bezier_patch.cpp). A collapsed edge's vanished
+// normal is taken a hair towards the patch centre, where the surface is regular.
+SurfacePoint evaluate(const BezierPatch& p, double u, double v) noexcept;
 
 }  // namespace frontsteal::tess

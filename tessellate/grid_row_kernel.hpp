@@ -31,8 +31,8 @@ struct RowKernelArgs {
   int count = 0;
   const float* basis = nullptr;
   const float* derivative = nullptr;
-  float value[kMaxDegree + 1][4] = {};
-  float du[kMaxDegree + 1][4] = {};
+  float value[kMaxDegree + 1][4];  // rows 0..degree_v set by the caller and read; the rest left unwritten
+  float du[kMaxDegree + 1][4];
   float* position = nullptr;
   float* normal = nullptr;
   std::uint8_t* degenerate = nullptr;

@@ -32,9 +32,18 @@ struct TriangleBuffers {
     indices.clear();
   }
   std::size_t triangle_count() const noexcept { return indices.size() / 3; }
+  // One element at a time: vector::insert of an initializer list goes through a memcpy call per triangle.
+  void add_triangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    indices.push_back(a);
+    indices.push_back(b);
+    indices.push_back(c);
+  }
   std::uint32_t add_vertex(const SurfacePoint& sp, double u, double v) {
-    positions.emplace_back(sp.position);
-    normals.emplace_back(sp.normal);
+    return add_vertex(glm::vec3(sp.position), glm::vec3(sp.normal), u, v);
+  }
+  std::uint32_t add_vertex(const glm::vec3& position, const glm::vec3& normal, double u, double v) {
+    positions.push_back(position);
+    normals.push_back(normal);
     uvs.emplace_back(static_cast<float>(u), static_cast<float>(v));
     return static_cast<std::uint32_t>(positions.size() - 1);
   }
@@ -42,8 +51,11 @@ struct TriangleBuffers {
 
 // One row of the grid at fixed u: the patch collapsed to a curve in v (homogeneous control values R_j and
 // their u-derivatives D_j), so each vertex costs 3(n+1) multiply-adds instead of 3(m+1)(n+1).
+//
+// Entries past degree_v are left unwritten (collapse() writes 0..degree_v, at() reads no further): zero-filling
+// the 2×26 dvec4 of the degree-25 bound would cost more than collapsing a bicubic row.
 struct RowCurve {
-  std::array<glm::dvec4, kMaxDegree + 1> value{}, du{};
+  std::array<glm::dvec4, kMaxDegree + 1> value, du;
 
   void collapse(const BezierPatch& p, const BernsteinTable& bu) noexcept {
     for (int j = 0; j <= p.degree_v; ++j) {
@@ -99,54 +111,68 @@ struct FloatGridScratch {
   int basis_degree = -1, basis_steps = -1;
 };
 
+// Makes the scratch's v-basis tables for (degree_v, n_v) unless it holds them already, and sizes its row
+// scratch: what float_grid_row (below) needs before the rows of one grid.
+inline void prepare_float_grid(int degree_v, int nv, FloatGridScratch& scratch) {
+  const int n = nv + 1, padded = padded_row(n);
+  scratch.rows.resize(static_cast<std::size_t>(6 * padded));
+  scratch.degenerate.resize(static_cast<std::size_t>(n));
+  if (scratch.basis_degree == degree_v && scratch.basis_steps == nv) return;
+  scratch.basis.assign(static_cast<std::size_t>((degree_v + 1) * padded), 0.0f);
+  scratch.derivative.assign(scratch.basis.size(), 0.0f);
+  for (int j = 0; j <= nv; ++j) {
+    const BernsteinTable b = bernstein(degree_v, static_cast<double>(j) / nv);
+    for (int k = 0; k <= degree_v; ++k) {
+      scratch.basis[static_cast<std::size_t>(k * padded + j)] = static_cast<float>(b.value[k]);
+      scratch.derivative[static_cast<std::size_t>(k * padded + j)] = static_cast<float>(b.derivative[k]);
+    }
+  }
+  scratch.basis_degree = degree_v;
+  scratch.basis_steps = nv;
+}
+
+// The grid row at parameter u (vertices v = j / n_v, j = 0..n_v) by the SIMD float kernel: positions and unit
+// normals into `position` / `normal` (x, y, z per vertex); scratch.degenerate[j] = 1 where the normal vanished
+// (a collapsed edge: the caller takes that normal from the double evaluator). prepare_float_grid first.
+inline void float_grid_row(const BezierPatch& patch, const BernsteinTable& u_basis, int nv, FloatGridScratch& scratch,
+                           glm::vec3* position, glm::vec3* normal) {
+  RowCurve row;
+  row.collapse(patch, u_basis);  // in double: (m+1)(n+1) terms per row, not per vertex
+  RowKernelArgs args;
+  args.degree_v = patch.degree_v;
+  args.count = nv + 1;
+  args.basis = scratch.basis.data();
+  args.derivative = scratch.derivative.data();
+  args.degenerate = scratch.degenerate.data();
+  args.scratch = scratch.rows.data();
+  for (int k = 0; k <= patch.degree_v; ++k) {
+    for (int c = 0; c < 4; ++c) {
+      args.value[k][c] = static_cast<float>(row.value[k][c]);
+      args.du[k][c] = static_cast<float>(row.du[k][c]);
+    }
+  }
+  args.position = &position->x;
+  args.normal = &normal->x;
+  evaluate_row_float(args);
+}
+
 // The same grid as tessellate_untrimmed (below), each row by the SIMD float kernel (grid_row_kernel.hpp).
 // Use only where float_row_error_bound(patch) is well inside the tolerance (plan_surface decides).
 inline void tessellate_untrimmed_float(const BezierPatch& patch, StepSizes steps, TriangleBuffers& out,
                                        FloatGridScratch& scratch) {
   // No clear(): every element is overwritten below, and resizing a buffer that already holds this surface's
   // last grid (the steady state) writes nothing, where clear() + resize() zero-filled it all first.
-  const int nu = steps.n_u, nv = steps.n_v, n = nv + 1, dv = patch.degree_v, padded = padded_row(n);
-  scratch.rows.resize(static_cast<std::size_t>(6 * padded));
-  scratch.degenerate.resize(static_cast<std::size_t>(n));
-  if (scratch.basis_degree != dv || scratch.basis_steps != nv) {
-    scratch.basis.assign(static_cast<std::size_t>((dv + 1) * padded), 0.0f);
-    scratch.derivative.assign(scratch.basis.size(), 0.0f);
-    for (int j = 0; j <= nv; ++j) {
-      const BernsteinTable b = bernstein(dv, static_cast<double>(j) / nv);
-      for (int k = 0; k <= dv; ++k) {
-        scratch.basis[static_cast<std::size_t>(k * padded + j)] = static_cast<float>(b.value[k]);
-        scratch.derivative[static_cast<std::size_t>(k * padded + j)] = static_cast<float>(b.derivative[k]);
-      }
-    }
-    scratch.basis_degree = dv;
-    scratch.basis_steps = nv;
-  }
+  const int nu = steps.n_u, nv = steps.n_v, n = nv + 1;
+  prepare_float_grid(patch.degree_v, nv, scratch);
   const std::size_t vertices = static_cast<std::size_t>((nu + 1) * n);
   out.positions.resize(vertices);
   out.normals.resize(vertices);
   out.uvs.resize(vertices);
   out.indices.resize(static_cast<std::size_t>(6 * nu * nv));
-  RowKernelArgs args;
-  args.degree_v = dv;
-  args.count = n;
-  args.basis = scratch.basis.data();
-  args.derivative = scratch.derivative.data();
-  args.degenerate = scratch.degenerate.data();
-  args.scratch = scratch.rows.data();
-  RowCurve row;
   for (int i = 0; i <= nu; ++i) {
     const double u = static_cast<double>(i) / nu;
-    row.collapse(patch, bernstein(patch.degree_u, u));  // in double: (m+1)(n+1) terms per row, not per vertex
-    for (int k = 0; k <= dv; ++k) {
-      for (int c = 0; c < 4; ++c) {
-        args.value[k][c] = static_cast<float>(row.value[k][c]);
-        args.du[k][c] = static_cast<float>(row.du[k][c]);
-      }
-    }
     const std::size_t first = static_cast<std::size_t>(i * n);
-    args.position = &out.positions[first].x;
-    args.normal = &out.normals[first].x;
-    evaluate_row_float(args);
+    float_grid_row(patch, bernstein(patch.degree_u, u), nv, scratch, &out.positions[first], &out.normals[first]);
     for (int j = 0; j <= nv; ++j) {
       out.uvs[first + static_cast<std::size_t>(j)] =
           glm::vec2(static_cast<float>(u), static_cast<float>(j) / static_cast<float>(nv));

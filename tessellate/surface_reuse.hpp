@@ -2,8 +2,8 @@
 // whose step counts (and trim polylines) did not change since its buffer was made keeps that buffer.
 //
 // Why it is exact: tessellate_planned's output is a function of the surface and of what this header calls its
-// TessellationKey — whether and how it was culled, the grid's steps, single or double precision (untrimmed
-// grids), the step count n_t of every trim segment (trimmed surfaces: they fix the trim polylines) and the
+// TessellationKey — whether and how it was culled, the grid's steps, single or double precision of the grid's
+// corners, the step count n_t of every trim segment (trimmed surfaces: they fix the trim polylines) and the
 // planted defect (tests). Epsilon and the edge length reach the triangles only through those counts. Equal
 // keys therefore give identical bytes, and reusing the buffer is the same as recomputing it; the tests hold
 // both against each other along camera paths. A reused surface's SurfaceResult is the one its buffer was made
@@ -44,7 +44,7 @@ inline void make_tessellation_key(const PreparedSurface& s, const SurfacePlan& p
   }
   key.steps = plan.steps;
   key.planted_defect = settings.planted_defect;
-  key.single_precision = !s.trimmed() && plan.single_precision;  // the trimmed path is always double
+  key.single_precision = plan.single_precision;
   for (const TrimLoop* loop : s.loops) {
     for (const TrimSegment& seg : loop->segments) {
       key.trim_steps.push_back(static_cast<std::uint32_t>(
@@ -60,7 +60,7 @@ inline bool tessellation_key_matches(const PreparedSurface& s, const SurfacePlan
   if (key.culled != plan.culled) return false;
   if (plan.culled != Culled::no) return true;
   if (key.steps != plan.steps || key.planted_defect != settings.planted_defect ||
-      key.single_precision != (!s.trimmed() && plan.single_precision)) {
+      key.single_precision != plan.single_precision) {
     return false;
   }
   std::size_t k = 0;

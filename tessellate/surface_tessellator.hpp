@@ -79,7 +79,7 @@ struct TessellationSettings {
   bool frustum_culling = true;
   bool back_face_culling = true;                       // solids only
   PlantedDefect planted_defect = PlantedDefect::none;  // tests only
-  bool single_precision = true;  // untrimmed grids in float where the error bound allows (grid_row_kernel.hpp)
+  bool single_precision = true;  // grid corners in float where the error bound allows (grid_row_kernel.hpp)
 };
 
 enum class Culled : std::uint8_t { no, frustum, back_face };
@@ -140,9 +140,15 @@ struct SurfacePlan {
   // The deviation bound wanted more than max_steps in a direction: the cap holds, so the screen deviation of
   // this surface may exceed the pixel tolerance. Reported per frame, never silent.
   bool capped = false;
-  // The untrimmed grid may be evaluated in single precision: its error bound is within a tenth of epsilon.
+  // The grid's corners (untrimmed grids, and the corners of trimmed ones) may be evaluated in single precision:
+  // the float kernel's error bound is within a tenth of epsilon. Trim points are evaluated in double always.
   bool single_precision = false;
 };
+
+// Whether the grid's corners of `s` may be evaluated in single precision at object-space tolerance `epsilon`.
+inline bool single_precision_allowed(const PreparedSurface& s, double epsilon, const TessellationSettings& settings) {
+  return settings.single_precision && s.float_error <= 0.1 * epsilon;
+}
 
 inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, const Frustum& frustum,
                                 const TessellationSettings& settings) {
@@ -174,7 +180,7 @@ inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, 
   const StepSizes z = size_steps(s.bounds, plan.edge_length, settings.max_steps);
   plan.steps = {std::min(std::max(d.n_u, z.n_u), settings.max_steps),
                 std::min(std::max(d.n_v, z.n_v), settings.max_steps)};
-  plan.single_precision = settings.single_precision && s.float_error <= 0.1 * plan.epsilon;
+  plan.single_precision = single_precision_allowed(s, plan.epsilon, settings);
   return plan;
 }
 
@@ -249,6 +255,12 @@ struct TessellationScratch {
   std::vector<std::uint32_t> ring_triangles, next, prev;
   TilingAudit tiling;
   FloatGridScratch float_grid;
+  // The trimmed path's grid rows in float (float_grid_row), one per parity of the row index, as `rows` below.
+  struct FloatRow {
+    std::vector<glm::vec3> position, normal;
+    std::vector<std::uint8_t> degenerate;
+  };
+  FloatRow trim_float_rows[2];
   PhaseProfile* profile = nullptr;  // where the time goes (phase_profile.hpp); none in the product
   static constexpr std::uint32_t kNone = 0xffff'ffffu;
 };
@@ -322,8 +334,10 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
   scratch.corner_vertex.assign(static_cast<std::size_t>((nu + 1) * (nv + 1)), TessellationScratch::kNone);
   scratch.trim_vertex.assign(trimmer.points().size(), TessellationScratch::kNone);
 
-  // Grid corners by rows collapsed once (RowCurve: 3(n+1) terms per vertex instead of 3(m+1)(n+1)). Cells are
-  // visited row by row and use grid rows i and i+1, which differ in parity: one cached row per parity.
+  // Grid corners by rows collapsed once (RowCurve: 3(n+1) terms per vertex instead of 3(m+1)(n+1)); in single
+  // precision, whole rows at a time by the SIMD float kernel, as untrimmed grids. Cells are visited row by row
+  // and use grid rows i and i+1, which differ in parity: one cached row per parity. A corner becomes an output
+  // vertex when a triangle first uses it, in either precision, so the vertex order does not depend on it.
   RowCurve rows[2];
   int cached_row[2] = {-1, -1};
   const auto grid_row = [&](int i) -> const RowCurve& {
@@ -334,25 +348,49 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
     }
     return rows[slot];
   };
-  const auto vertex = [&](std::uint32_t id) -> std::uint32_t {
+  if (plan.single_precision) {
+    prepare_float_grid(patch.degree_v, nv, scratch.float_grid);
+    for (TessellationScratch::FloatRow& row : scratch.trim_float_rows) {
+      row.position.resize(static_cast<std::size_t>(nv + 1));
+      row.normal.resize(static_cast<std::size_t>(nv + 1));
+    }
+  }
+  const auto float_row = [&](int i) -> const TessellationScratch::FloatRow& {
+    const int slot = i & 1;
+    TessellationScratch::FloatRow& row = scratch.trim_float_rows[slot];
+    if (cached_row[slot] != i) {
+      float_grid_row(patch, scratch.trim_u_basis[i], nv, scratch.float_grid, row.position.data(), row.normal.data());
+      row.degenerate.assign(scratch.float_grid.degenerate.begin(), scratch.float_grid.degenerate.end());
+      cached_row[slot] = i;
+    }
+    return row;
+  };
+  // The output vertex of a grid corner or trim point, made on first use. Making one is out of line: the common
+  // case, a vertex made already, is then a load and a compare where the cells are visited.
+  const auto make_vertex = [&](std::uint32_t id) __attribute__((noinline))->std::uint32_t {
     if (id & GridTrimmer::kCornerBit) {
       const std::uint32_t k = id & ~GridTrimmer::kCornerBit;
-      std::uint32_t& slot = scratch.corner_vertex[k];
-      if (slot == TessellationScratch::kNone) {
-        const int i = static_cast<int>(k / static_cast<std::uint32_t>(nv + 1));
-        const int j = static_cast<int>(k % static_cast<std::uint32_t>(nv + 1));
-        SurfacePoint sp = grid_row(i).at(patch.degree_v, scratch.trim_v_basis[j]);
-        if (sp.normal == glm::dvec3(0.0)) sp.normal = evaluate(patch, scratch.u_lines[i], scratch.v_lines[j]).normal;
-        slot = out.add_vertex(sp, scratch.u_lines[i], scratch.v_lines[j]);
+      const int i = static_cast<int>(k / static_cast<std::uint32_t>(nv + 1));
+      const int j = static_cast<int>(k % static_cast<std::uint32_t>(nv + 1));
+      const double u = scratch.u_lines[i], v = scratch.v_lines[j];
+      if (plan.single_precision) {
+        const TessellationScratch::FloatRow& row = float_row(i);
+        const bool collapsed = row.degenerate[static_cast<std::size_t>(j)] != 0;
+        return scratch.corner_vertex[k] = out.add_vertex(
+                   row.position[static_cast<std::size_t>(j)],
+                   collapsed ? glm::vec3(evaluate(patch, u, v).normal) : row.normal[static_cast<std::size_t>(j)], u, v);
       }
-      return slot;
+      SurfacePoint sp = grid_row(i).at(patch.degree_v, scratch.trim_v_basis[j]);
+      if (sp.normal == glm::dvec3(0.0)) sp.normal = evaluate(patch, u, v).normal;
+      return scratch.corner_vertex[k] = out.add_vertex(sp, u, v);
     }
-    std::uint32_t& slot = scratch.trim_vertex[id];
-    if (slot == TessellationScratch::kNone) {
-      const glm::dvec2 uv = trimmer.points()[id];
-      slot = out.add_vertex(evaluate(patch, uv.x, uv.y), uv.x, uv.y);
-    }
-    return slot;
+    const glm::dvec2 uv = trimmer.points()[id];
+    return scratch.trim_vertex[id] = out.add_vertex(evaluate(patch, uv.x, uv.y), uv.x, uv.y);
+  };
+  const auto vertex = [&](std::uint32_t id) -> std::uint32_t {
+    const std::uint32_t made =
+        id & GridTrimmer::kCornerBit ? scratch.corner_vertex[id & ~GridTrimmer::kCornerBit] : scratch.trim_vertex[id];
+    return made != TessellationScratch::kNone ? made : make_vertex(id);
   };
   const auto corner_id = [nv](int i, int j) {
     return GridTrimmer::kCornerBit | static_cast<std::uint32_t>(i * (nv + 1) + j);
@@ -369,7 +407,8 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
         case CellKind::full: {
           const std::uint32_t a = vertex(corner_id(i, j)), b = vertex(corner_id(i + 1, j));
           const std::uint32_t c = vertex(corner_id(i + 1, j + 1)), d = vertex(corner_id(i, j + 1));
-          out.indices.insert(out.indices.end(), {a, b, c, a, c, d});
+          out.add_triangle(a, b, c);
+          out.add_triangle(a, c, d);
           result.triangle_area += cell_area;
           break;
         }
@@ -421,7 +460,8 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
               const std::uint32_t* tri = &scratch.ring_triangles[t];
               const double area2 = detail::cross2(position(tri[0]), position(tri[1]), position(tri[2]));
               if (area2 <= degenerate_area2) continue;  // degenerate: it only carried edges for the audit
-              out.indices.insert(out.indices.end(), {vertex(tri[0]), vertex(tri[1]), vertex(tri[2])});
+              const std::uint32_t a = vertex(tri[0]), b = vertex(tri[1]), c = vertex(tri[2]);
+              out.add_triangle(a, b, c);
               result.triangle_area += 0.5 * area2;
             }
           }

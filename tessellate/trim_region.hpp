@@ -314,25 +314,50 @@ class GridTrimmer {
   // Step 3: winding number at each row's mid-height, at every cell's left edge.
   void classify_by_scanlines() {
     base_inside_.assign(static_cast<std::size_t>(nu_ * nv_), 0);
+    // Each edge's crossings go to the scanlines it spans (a bucket per row, by two passes: count, then fill), so
+    // the work is the crossings, not rows × edges. An edge crosses y when min(a.y, b.y) ≤ y < max(a.y, b.y).
+    scanline_y_.resize(static_cast<std::size_t>(nv_));
     for (int iv = 0; iv < nv_; ++iv) {
-      const double y = 0.5 * (v_[static_cast<std::size_t>(iv)] + v_[static_cast<std::size_t>(iv) + 1]);
-      crossings_.clear();
+      scanline_y_[static_cast<std::size_t>(iv)] =
+          0.5 * (v_[static_cast<std::size_t>(iv)] + v_[static_cast<std::size_t>(iv) + 1]);
+    }
+    const auto rows_spanned = [this](const glm::dvec2& a, const glm::dvec2& b) {
+      const auto first = std::lower_bound(scanline_y_.begin(), scanline_y_.end(), std::min(a.y, b.y));
+      const auto last = std::lower_bound(first, scanline_y_.end(), std::max(a.y, b.y));
+      return std::pair(static_cast<std::size_t>(first - scanline_y_.begin()),
+                       static_cast<std::size_t>(last - scanline_y_.begin()));
+    };
+    const auto for_each_edge = [this](auto&& f) {
       for (const auto& [start, n] : loop_ranges_) {
-        for (std::uint32_t k = 0; k < n; ++k) {
-          const glm::dvec2& a = points_[start + k];
-          const glm::dvec2& b = points_[start + (k + 1) % n];
-          if ((a.y <= y) == (b.y <= y)) continue;  // half-open: a vertex on the line counts once
-          const double x = a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x);
-          crossings_.push_back({x, b.y > a.y ? 1 : -1});
-        }
+        for (std::uint32_t k = 0; k < n; ++k) f(points_[start + k], points_[start + (k + 1 == n ? 0 : k + 1)]);
       }
-      std::sort(crossings_.begin(), crossings_.end(), [](const auto& l, const auto& r) { return l.first < r.first; });
+    };
+    scanline_begin_.assign(static_cast<std::size_t>(nv_) + 1, 0);
+    for_each_edge([&](const glm::dvec2& a, const glm::dvec2& b) {
+      const auto [first, last] = rows_spanned(a, b);
+      for (std::size_t r = first; r < last; ++r) ++scanline_begin_[r + 1];
+    });
+    for (std::size_t r = 0; r < static_cast<std::size_t>(nv_); ++r) scanline_begin_[r + 1] += scanline_begin_[r];
+    crossings_.resize(scanline_begin_.back());
+    scanline_fill_.assign(scanline_begin_.begin(), scanline_begin_.end() - 1);
+    for_each_edge([&](const glm::dvec2& a, const glm::dvec2& b) {
+      const auto [first, last] = rows_spanned(a, b);
+      for (std::size_t r = first; r < last; ++r) {
+        const double y = scanline_y_[r];
+        const double x = a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x);
+        crossings_[scanline_fill_[r]++] = {x, b.y > a.y ? 1 : -1};
+      }
+    });
+    for (int iv = 0; iv < nv_; ++iv) {
+      const auto row_begin = crossings_.begin() + scanline_begin_[static_cast<std::size_t>(iv)];
+      const auto row_end = crossings_.begin() + scanline_begin_[static_cast<std::size_t>(iv) + 1];
+      std::sort(row_begin, row_end, [](const auto& l, const auto& r) { return l.first < r.first; });
       // Sweep from the right: winding(x) = Σ directions of crossings right of x.
       int winding = base_winding_;
-      std::size_t k = crossings_.size();
+      auto k = row_end;
       for (int iu = nu_ - 1; iu >= 0; --iu) {
         const double x = u_[static_cast<std::size_t>(iu)];
-        while (k > 0 && crossings_[k - 1].first > x) winding += crossings_[--k].second;
+        while (k != row_begin && (k - 1)->first > x) winding += (--k)->second;
         const std::size_t cell = static_cast<std::size_t>(iu * nv_ + iv);
         base_inside_[cell] = winding > 0;
         kind_[cell] = has_chains_[cell] ? CellKind::partial : (winding > 0 ? CellKind::full : CellKind::empty);
@@ -421,7 +446,9 @@ class GridTrimmer {
   std::vector<std::uint32_t> chain_points_;
   std::vector<CellKind> kind_;
   std::vector<std::uint8_t> has_chains_, base_inside_;
-  std::vector<std::pair<double, int>> crossings_;
+  std::vector<std::pair<double, int>> crossings_;  // classify_by_scanlines: (x, direction), row by row
+  std::vector<double> scanline_y_;
+  std::vector<std::size_t> scanline_begin_, scanline_fill_;
   std::vector<std::uint32_t> cell_chain_begin_, chain_order_, fill_;
   std::vector<std::uint32_t> open_, closed_;
   std::vector<std::uint8_t> used_;

@@ -216,6 +216,7 @@ void BM_ours_trimmed_hole(benchmark::State& state) {
   plan.epsilon = 1e-3;  // unused by polyline trims (degree 1: one segment each)
   plan.edge_length = 1.0;
   ts::TessellationSettings settings;
+  plan.single_precision = ts::single_precision_allowed(prepared, plan.epsilon, settings);  // as plan_surface
   ts::TessellationScratch scratch;
   ts::TriangleBuffers out;
   std::size_t triangles = 0;

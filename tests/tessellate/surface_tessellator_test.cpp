@@ -530,6 +530,53 @@ TEST_CASE("one scratch through a mix of surfaces gives the bytes a fresh scratch
   }
 }
 
+TEST_CASE("trimmed grids in single precision: only grid corners differ, within the float bound", "[tessellate]") {
+  // The trimmed path evaluates its grid corners by the float kernel where plan.single_precision allows, as the
+  // untrimmed grid does. Against the double path: the same vertices in the same order ((u, v) and indices equal),
+  // trim points bit-identical (always in double), grid corners within float_row_error_bound, the same audit.
+  std::mt19937_64 rng(33);
+  ts::TessellationScratch scratch;
+  ts::TriangleBuffers exact, fast;
+  ts::TessellationSettings settings;
+  int corners = 0, trim_points = 0;
+  for (int trial = 0; trial < 80; ++trial) {
+    const int du = 1 + trial % 4, dv = 1 + (trial / 4) % 4;
+    const ts::Surface s = trimmed_random_surface(rng, du, dv, trial % 3 == 0);
+    const ts::PreparedSurface prepared = ts::prepare_surface(s);
+    ts::SurfacePlan plan;
+    plan.epsilon = 1e-3;
+    plan.edge_length = 0.05;
+    plan.steps = {3 + trial % 29, 3 + (trial * 7) % 31};
+    plan.single_precision = false;
+    const ts::SurfaceResult r_exact = ts::tessellate_planned(prepared, plan, settings, scratch, exact);
+    plan.single_precision = true;
+    const ts::SurfaceResult r_fast = ts::tessellate_planned(prepared, plan, settings, scratch, fast);
+    INFO("trial " << trial << ": degree " << du << "x" << dv << ", steps " << plan.steps.n_u << "x" << plan.steps.n_v);
+    REQUIRE(r_exact.inconsistencies() == 0);
+    CHECK(r_fast.inconsistencies() == 0);
+    CHECK(r_fast.triangles == r_exact.triangles);
+    REQUIRE(fast.uvs == exact.uvs);
+    CHECK(fast.indices == exact.indices);
+    const double bound = ts::float_row_error_bound(s.patch) + 1.2e-7 * 4.0;  // plus one float rounding
+    for (std::size_t k = 0; k < exact.positions.size(); ++k) {
+      const glm::vec2 uv = exact.uvs[k];
+      const auto on_line = [](float t, int n) { return static_cast<float>(std::round(t * n)) / n == t; };
+      const bool corner = on_line(uv.x, plan.steps.n_u) && on_line(uv.y, plan.steps.n_v);
+      if (!corner) {
+        CHECK(fast.positions[k] == exact.positions[k]);
+        CHECK(fast.normals[k] == exact.normals[k]);
+        ++trim_points;
+        continue;
+      }
+      corners += fast.positions[k] != exact.positions[k];
+      CHECK(glm::length(fast.positions[k] - exact.positions[k]) <= bound);
+      CHECK(glm::dot(fast.normals[k], exact.normals[k]) > std::cos(1e-3));
+    }
+  }
+  CHECK(corners > 1000);  // corners that differ: the float path did run
+  CHECK(trim_points > 1000);
+}
+
 TEST_CASE("long trim polylines in few cells: large pieces get the constrained triangulation, audited like the rest",
           "[tessellate]") {
   std::mt19937_64 rng(27);
