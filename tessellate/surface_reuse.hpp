@@ -45,11 +45,9 @@ inline void make_tessellation_key(const PreparedSurface& s, const SurfacePlan& p
   key.steps = plan.steps;
   key.planted_defect = settings.planted_defect;
   key.single_precision = plan.single_precision;
-  for (const TrimLoop* loop : s.loops) {
-    for (const TrimSegment& seg : loop->segments) {
-      key.trim_steps.push_back(static_cast<std::uint32_t>(
-          trim_segment_steps(seg, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps)));
-    }
+  for (const TrimSegmentShape& shape : s.segment_shapes) {
+    key.trim_steps.push_back(static_cast<std::uint32_t>(
+        trim_segment_steps(shape, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps)));
   }
 }
 
@@ -63,17 +61,15 @@ inline bool tessellation_key_matches(const PreparedSurface& s, const SurfacePlan
       key.single_precision != plan.single_precision) {
     return false;
   }
-  std::size_t k = 0;
-  for (const TrimLoop* loop : s.loops) {
-    for (const TrimSegment& seg : loop->segments) {
-      if (k == key.trim_steps.size() ||
-          key.trim_steps[k++] != static_cast<std::uint32_t>(trim_segment_steps(
-                                     seg, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps))) {
-        return false;
-      }
+  if (key.trim_steps.size() != s.segment_shapes.size()) return false;
+  for (std::size_t k = 0; k < s.segment_shapes.size(); ++k) {
+    if (key.trim_steps[k] !=
+        static_cast<std::uint32_t>(trim_segment_steps(s.segment_shapes[k], s.bounds, plan.epsilon, plan.edge_length,
+                                                      settings.max_trim_steps))) {
+      return false;
     }
   }
-  return k == key.trim_steps.size();
+  return true;
 }
 
 // What a buffer was last made with.

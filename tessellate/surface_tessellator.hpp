@@ -84,6 +84,27 @@ struct TessellationSettings {
 
 enum class Culled : std::uint8_t { no, frustum, back_face };
 
+// What n_t of a trim segment (step 4) needs of its control polygon: independent of the view, so computed once.
+struct TrimSegmentShape {
+  int degree = 1;
+  double second = 0;      // max ‖c_{k+2} − 2c_{k+1} + c_k‖
+  double du = 0, dv = 0;  // max |Δu_k|, max |Δv_k|
+};
+
+inline TrimSegmentShape trim_segment_shape(const TrimSegment& seg) {
+  TrimSegmentShape shape;
+  const int d = shape.degree = seg.degree();
+  if (d <= 1) return shape;
+  for (int k = 0; k + 1 <= d; ++k) {
+    shape.du = std::max(shape.du, std::abs(seg.control[k + 1].x - seg.control[k].x));
+    shape.dv = std::max(shape.dv, std::abs(seg.control[k + 1].y - seg.control[k].y));
+    if (k + 2 <= d)
+      shape.second =
+          std::max(shape.second, glm::length(seg.control[k + 2] - 2.0 * seg.control[k + 1] + seg.control[k]));
+  }
+  return shape;
+}
+
 // What a surface needs every frame that does not depend on the view.
 struct PreparedSurface {
   const Surface* surface = nullptr;
@@ -93,6 +114,7 @@ struct PreparedSurface {
   NormalCone cone;
   double float_error = 0;              // float_row_error_bound: the single-precision grid's position error bound
   std::vector<const TrimLoop*> loops;  // trim loops; empty when untrimmed or trimmed by the domain alone
+  std::vector<TrimSegmentShape> segment_shapes;  // of every segment of `loops`, loop by loop
   bool trimmed() const noexcept { return !loops.empty(); }
 };
 
@@ -127,6 +149,9 @@ inline PreparedSurface prepare_surface(const Surface& s) {
   const bool only_domain = s.loops.size() == 1 && detail::is_domain_boundary(s.loops[0]);
   if (!only_domain) {
     for (const TrimLoop& loop : s.loops) p.loops.push_back(&loop);
+  }
+  for (const TrimLoop* loop : p.loops) {
+    for (const TrimSegment& seg : loop->segments) p.segment_shapes.push_back(trim_segment_shape(seg));
   }
   return p;
 }
@@ -184,22 +209,19 @@ inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, 
   return plan;
 }
 
-// n_t for one trim segment (step 4 of the opening comment).
+// n_t for one trim segment (step 4 of the opening comment), from its shape (PreparedSurface::segment_shapes).
+inline int trim_segment_steps(const TrimSegmentShape& shape, const NetBounds& b, double epsilon, double edge_length,
+                              int max_steps) {
+  const int d = shape.degree;
+  if (d <= 1) return 1;
+  const double eps_domain = epsilon / std::max(b.len_u + b.len_v, 1e-300);
+  const double wang = std::ceil(std::sqrt(d * (d - 1) * shape.second / (8.0 * eps_domain)));
+  const double size = std::ceil(d * (b.len_u * shape.du + b.len_v * shape.dv) / edge_length);
+  return static_cast<int>(std::clamp(std::max(wang, size), 1.0, static_cast<double>(max_steps)));
+}
 inline int trim_segment_steps(const TrimSegment& seg, const NetBounds& b, double epsilon, double edge_length,
                               int max_steps) {
-  const int d = seg.degree();
-  if (d <= 1) return 1;
-  double second = 0, du = 0, dv = 0;
-  for (int k = 0; k + 1 <= d; ++k) {
-    du = std::max(du, std::abs(seg.control[k + 1].x - seg.control[k].x));
-    dv = std::max(dv, std::abs(seg.control[k + 1].y - seg.control[k].y));
-    if (k + 2 <= d)
-      second = std::max(second, glm::length(seg.control[k + 2] - 2.0 * seg.control[k + 1] + seg.control[k]));
-  }
-  const double eps_domain = epsilon / std::max(b.len_u + b.len_v, 1e-300);
-  const double wang = std::ceil(std::sqrt(d * (d - 1) * second / (8.0 * eps_domain)));
-  const double size = std::ceil(d * (b.len_u * du + b.len_v * dv) / edge_length);
-  return static_cast<int>(std::clamp(std::max(wang, size), 1.0, static_cast<double>(max_steps)));
+  return trim_segment_steps(trim_segment_shape(seg), b, epsilon, edge_length, max_steps);
 }
 
 // A per-surface cost estimate in "basis-weighted vertex evaluations", for static allocation: the grid's
@@ -211,10 +233,8 @@ inline double estimate_cost(const PreparedSurface& s, const SurfacePlan& plan, c
   const double per_vertex = (s.surface->patch.degree_u + 1.0) * (s.surface->patch.degree_v + 1.0);
   const double grid = (plan.steps.n_u + 1.0) * (plan.steps.n_v + 1.0);
   double trim_points = 0;
-  for (const TrimLoop* loop : s.loops) {
-    for (const TrimSegment& seg : loop->segments) {
-      trim_points += trim_segment_steps(seg, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps);
-    }
+  for (const TrimSegmentShape& shape : s.segment_shapes) {
+    trim_points += trim_segment_steps(shape, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps);
   }
   // A trim polyline of t points cuts about t + crossings cells; each costs a few evaluations.
   const double trimmed_work = trim_points * 4.0 * per_vertex;
@@ -292,11 +312,12 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
   out.clear();
   // Trim polylines at this frame's n_t.
   scratch.loops.resize(s.loops.size());
+  const TrimSegmentShape* shape = s.segment_shapes.data();
   for (std::size_t l = 0; l < s.loops.size(); ++l) {
     Polygon2& poly = scratch.loops[l];
     poly.clear();
     for (const TrimSegment& seg : s.loops[l]->segments) {
-      const int n = trim_segment_steps(seg, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps);
+      const int n = trim_segment_steps(*shape++, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps);
       for (int k = 0; k < n; ++k) poly.push_back(detail::trim_point(seg, static_cast<double>(k) / n));
     }
     result.trim_points += static_cast<std::uint32_t>(poly.size());

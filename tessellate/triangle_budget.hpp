@@ -64,9 +64,10 @@ inline std::uint64_t predict_triangles(const PreparedSurface& s, const SurfacePl
   if (!s.trimmed()) return static_cast<std::uint64_t>(grid);
   // Shoelace area and grid-line crossings over the loops' control polygons; trim points at this plan's ε.
   double area2 = 0, crossings = 0, trim_points = 0;
+  const TrimSegmentShape* shape = s.segment_shapes.data();
   for (const TrimLoop* loop : s.loops) {
     for (const TrimSegment& seg : loop->segments) {
-      trim_points += trim_segment_steps(seg, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps);
+      trim_points += trim_segment_steps(*shape++, s.bounds, plan.epsilon, plan.edge_length, settings.max_trim_steps);
       for (std::size_t k = 0; k + 1 < seg.control.size(); ++k) {
         const glm::dvec2 p = seg.control[k], q = seg.control[k + 1];
         area2 += p.x * q.y - q.x * p.y;
