@@ -187,12 +187,13 @@ inline SurfacePlan plan_surface(const PreparedSurface& s, const Camera& camera, 
     return plan;
   }
   const glm::dvec3 forward = camera.forward();
-  double d_min = std::numeric_limits<double>::infinity(), r_max = 0;
+  double d_min = std::numeric_limits<double>::infinity(), r2_max = 0;
   for (int k = 0; k < 8; ++k) {
     const glm::dvec3 c = s.box.corner(k) - camera.eye;
     d_min = std::min(d_min, glm::dot(c, forward));
-    r_max = std::max(r_max, glm::length(c));
+    r2_max = std::max(r2_max, glm::dot(c, c));
   }
+  const double r_max = std::sqrt(r2_max);  // the largest length: sqrt is monotonic and correctly rounded
   d_min = std::max(d_min, camera.near_plane);
   const double tx = camera.tan_half_fovx(), ty = camera.tan_half_fovy();
   // The perspective factor k of step 2: the smaller of the frustum's and the box's own (|p| / z ≤ r_max / d_min).
