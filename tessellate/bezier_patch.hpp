@@ -67,8 +67,8 @@ struct BernsteinTable {
 namespace detail {
 
 // bernstein() and evaluate() below with the degrees known at compile time where D, M, N > 0 (0: read at run
-// time), so that the common degrees unroll; always inlined, so that evaluate()'s AVX2 clone compiles them for AVX2. The
-// operations and their order are the same either way, so the results are the same bits.
+// time), so that the common degrees unroll; always inlined, so that evaluate()'s AVX2 build (bezier_patch.cpp)
+// compiles them for AVX2. The operations and their order are the same either way, so the results are the same bits.
 template <int D>
 [[gnu::always_inline]] inline BernsteinTable bernstein_of(int run_time_degree, double t) noexcept {
   const int degree = D > 0 ? D : run_time_degree;
@@ -102,7 +102,7 @@ template <int D>
 }
 
 // The sums of evaluate_of in glm::dvec4 (the default), or in a type of four lanes with the same lane-wise + and
-// scalar × (bezier_patch.cpp's GCC vector for its AVX2 clone); lane-wise, either way, so the same bits.
+// scalar × (bezier_patch.cpp's GCC vector); lane-wise, either way, so the same bits.
 template <class Lanes4>
 struct HomogeneousSum {
   [[gnu::always_inline]] static Lanes4 of(const glm::dvec4& h) noexcept {

@@ -387,6 +387,15 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
     }
     return row;
   };
+  // Grid corner (i, j) from its float row, as (position, normal); a collapsed edge's normal from the double evaluator.
+  const auto float_corner = [&](int i, int j) {
+    const TessellationScratch::FloatRow& row = float_row(i);
+    const std::size_t at = static_cast<std::size_t>(j);
+    const glm::vec3 normal = row.degenerate[at] != 0
+                                 ? glm::vec3(evaluate(patch, scratch.u_lines[i], scratch.v_lines[j]).normal)
+                                 : row.normal[at];
+    return std::pair(row.position[at], normal);
+  };
   // The output vertex of a grid corner or trim point, made on first use. Making one is out of line: the common
   // case, a vertex made already, is then a load and a compare where the cells are visited.
   const auto make_vertex = [&](std::uint32_t id) __attribute__((noinline))->std::uint32_t {
@@ -396,17 +405,24 @@ inline SurfaceResult tessellate_trimmed(const PreparedSurface& s, const SurfaceP
       const int j = static_cast<int>(k % static_cast<std::uint32_t>(nv + 1));
       const double u = scratch.u_lines[i], v = scratch.v_lines[j];
       if (plan.single_precision) {
-        const TessellationScratch::FloatRow& row = float_row(i);
-        const bool collapsed = row.degenerate[static_cast<std::size_t>(j)] != 0;
-        return scratch.corner_vertex[k] = out.add_vertex(
-                   row.position[static_cast<std::size_t>(j)],
-                   collapsed ? glm::vec3(evaluate(patch, u, v).normal) : row.normal[static_cast<std::size_t>(j)], u, v);
+        const auto [position, normal] = float_corner(i, j);
+        return scratch.corner_vertex[k] = out.add_vertex(position, normal, u, v);
       }
       SurfacePoint sp = grid_row(i).at(patch.degree_v, scratch.trim_v_basis[j]);
       if (sp.normal == glm::dvec3(0.0)) sp.normal = evaluate(patch, u, v).normal;
       return scratch.corner_vertex[k] = out.add_vertex(sp, u, v);
     }
     const glm::dvec2 uv = trimmer.points()[id];
+    if (plan.single_precision) {
+      // A trim point exactly on a grid corner (a trim edge passing through it diagonally) is the corner for the
+      // cells beside it that use the corner's own vertex: it takes the corner's float position, or the two would
+      // sit up to the float error bound apart and open a crack along the cell edge they share.
+      const int i = static_cast<int>(std::lround(uv.x * nu)), j = static_cast<int>(std::lround(uv.y * nv));
+      if (i >= 0 && i <= nu && j >= 0 && j <= nv && scratch.u_lines[i] == uv.x && scratch.v_lines[j] == uv.y) {
+        const auto [position, normal] = float_corner(i, j);
+        return scratch.trim_vertex[id] = out.add_vertex(position, normal, uv.x, uv.y);
+      }
+    }
     return scratch.trim_vertex[id] = out.add_vertex(evaluate(patch, uv.x, uv.y), uv.x, uv.y);
   };
   const auto vertex = [&](std::uint32_t id) -> std::uint32_t {

@@ -577,6 +577,42 @@ TEST_CASE("trimmed grids in single precision: only grid corners differ, within t
   CHECK(trim_points > 1000);
 }
 
+TEST_CASE("trimmed grids in single precision: a trim point on a grid corner sits exactly where the corner does",
+          "[tessellate]") {
+  // A trim edge through grid corners (here the diagonal of a square grid) puts trim points exactly on them; the
+  // cells beside such a point use the corner's vertex, the partial cells the trim point's. Both must be at the
+  // same position, or a crack as wide as the float error opens along the cell edge between them.
+  std::mt19937_64 rng(35);
+  ts::TessellationScratch scratch;
+  ts::TriangleBuffers tri;
+  ts::TessellationSettings settings;
+  int shared_places = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    ts::Surface s;
+    s.patch = random_patch(rng, 1 + trial % 3, 1 + (trial / 3) % 3, trial % 2 == 1);
+    s.loops.push_back(polyline_loop({{0.05, 0.05}, {0.95, 0.95}, {0.05, 0.95}}));
+    const ts::PreparedSurface prepared = ts::prepare_surface(s);
+    ts::SurfacePlan plan;
+    plan.epsilon = 1e-3;
+    plan.edge_length = 1e9;
+    plan.steps = {10 + 2 * trial, 10 + 2 * trial};
+    plan.single_precision = true;
+    const ts::SurfaceResult r = ts::tessellate_planned(prepared, plan, settings, scratch, tri);
+    REQUIRE(r.inconsistencies() == 0);
+    std::map<std::pair<float, float>, std::vector<std::size_t>> by_uv;
+    for (std::size_t k = 0; k < tri.uvs.size(); ++k) by_uv[{tri.uvs[k].x, tri.uvs[k].y}].push_back(k);
+    for (const auto& [uv, vertices] : by_uv) {
+      if (vertices.size() < 2) continue;
+      ++shared_places;
+      for (std::size_t k : vertices) {
+        INFO("trial " << trial << ", (u, v) = (" << uv.first << ", " << uv.second << ")");
+        CHECK(tri.positions[k] == tri.positions[vertices[0]]);
+      }
+    }
+  }
+  CHECK(shared_places > 50);  // the diagonal did pass through corners
+}
+
 TEST_CASE("long trim polylines in few cells: large pieces get the constrained triangulation, audited like the rest",
           "[tessellate]") {
   std::mt19937_64 rng(27);
