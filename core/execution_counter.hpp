@@ -25,6 +25,18 @@ struct ExecutionAudit {
 
   bool exactly_once() const noexcept { return lost == 0 && duplicated == 0; }
   bool at_least_once() const noexcept { return lost == 0; }
+
+  // Item `item` ran `runs` times: counted as lost (0), duplicated (2 or more) or fine.
+  void classify(ItemId item, std::uint32_t runs) {
+    if (runs == 0) {
+      ++lost;
+      if (first_lost.size() < 8) first_lost.push_back(item);
+    } else if (runs > 1) {
+      ++duplicated;
+      extra_runs += runs - 1;
+      if (first_duplicated.size() < 8) first_duplicated.push_back(item);
+    }
+  }
 };
 
 inline std::ostream& operator<<(std::ostream& out, const ExecutionAudit& a) {
@@ -51,17 +63,7 @@ class ExecutionCounter {
   ExecutionAudit audit_and_reset() noexcept {
     ExecutionAudit a;
     a.items = items_;
-    for (ItemId i = 0; i < items_; ++i) {
-      const std::uint32_t r = runs_[i].exchange(0, std::memory_order::relaxed);
-      if (r == 0) {
-        ++a.lost;
-        if (a.first_lost.size() < 8) a.first_lost.push_back(i);
-      } else if (r > 1) {
-        ++a.duplicated;
-        a.extra_runs += r - 1;
-        if (a.first_duplicated.size() < 8) a.first_duplicated.push_back(i);
-      }
-    }
+    for (ItemId i = 0; i < items_; ++i) a.classify(i, runs_[i].exchange(0, std::memory_order::relaxed));
     return a;
   }
 

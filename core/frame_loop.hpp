@@ -36,6 +36,12 @@
 //   E1 release -> E2 acquire (caller's reseed and item function visible to workers);
 //   E3 acq_rel chain: every worker's frame (stats, next_list, item effects) happens-before the last arriver;
 //   E4, E5 release -> E6 acquire: the caller sees every worker's results; the next frame sees active = P.
+//
+// LOSS ACCOUNT (frame_stats.hpp): each worker stamps the start of its first drain and the end of its last one
+// (clock reads the busy time makes anyway), and with a SteadyPhaseTimer (phase_timer.hpp) also when each idle
+// spell starts, when a steal's LockList is held and how long it waited at T4; the caller turns the stamps into
+// wake-up and termination times against its own release and done (claim_span). None of it is on the owner's
+// per-item path, and NoPhaseTimer removes every read the account adds.
 #pragma once
 
 #include <chrono>
@@ -55,6 +61,7 @@
 #include "core/id_range.hpp"
 #include "core/labelled_access.hpp"
 #include "core/policies.hpp"
+#include "core/phase_timer.hpp"
 #include "core/stealing_protocol.hpp"
 #include "core/thread_cpu_time.hpp"
 #include "core/workers_snapshot.hpp"
@@ -68,7 +75,14 @@ struct ItemFailure {
   std::exception_ptr error;
 };
 
-template <class Backend, class Policy>
+// When worker w's claims started and its last items ended, in one frame (SteadyPhaseTimer's clock, ns; both 0
+// when the worker never drained).
+struct ClaimSpan {
+  std::int64_t first_claim_at = 0;
+  std::int64_t last_done_at = 0;
+};
+
+template <class Backend, class Policy, class Timer = SteadyPhaseTimer>
 class StealingWorkers {
  public:
   using Slot = ActivitySlot<Backend, Policy>;
@@ -166,10 +180,13 @@ class StealingWorkers {
     const auto start = Clock::now();
     const std::int64_t cpu_start = thread_cpu_ns();  // once per frame: the clock is a system call
     me.log.clear();
+    me.span = ClaimSpan{};
     for (;;) {
       drain(me, w, process);
       active_.leave();  // A2: our list is exhausted and every item we claimed is done
-      if (!find_work(me)) break;
+      const std::int64_t looking_since = Timer::now();
+      if (!find_work(me)) break;  // the last search is the frame's end: termination, not search
+      me.stats.search_ns += me.steal_locked_at - looking_since;
     }
     me.next_list = normalized(me.log);  // sorted, adjacent ranges merged: lists do not fragment without bound
     me.stats.active_ns = elapsed_ns(start);
@@ -188,6 +205,11 @@ class StealingWorkers {
   const std::optional<ItemFailure>& failure(WorkerId w) const noexcept {
     (void)A::read(workers_[w]->handover);
     return workers_[w]->failure;
+  }
+  // When worker w's first claim of the last frame started and its last items ended (between frames only).
+  const ClaimSpan& claim_span(WorkerId w) const noexcept {
+    (void)A::read(workers_[w]->handover);
+    return workers_[w]->span;
   }
   OwnerHandle& owner(WorkerId w) noexcept { return workers_[w]->owner; }
   ThiefHandle& thief(WorkerId w) noexcept { return workers_[w]->thief; }
@@ -233,6 +255,20 @@ class StealingWorkers {
     std::uint32_t victim_cursor = 0;
     WorkerFrameStats stats;
     std::optional<ItemFailure> failure;
+    ClaimSpan span;                    // this frame's first drain start and last drain end
+    std::int64_t steal_locked_at = 0;  // the last successful steal: when the victim's LockList was held
+  };
+
+  // The loss account's view of one steal attempt (NoStealObserver's interface): when the victim's LockList was
+  // held, and how long the attempt waited at T4.
+  struct StealClock {
+    std::int64_t locked_at = 0, wait_from = 0, waited = 0;
+    void locked() noexcept { locked_at = Timer::now(); }
+    void wait_begins() noexcept { wait_from = Timer::now(); }
+    void wait_over() noexcept {
+      if (wait_from != 0) waited += Timer::now() - wait_from;
+      wait_from = 0;
+    }
   };
 
   static bool needs_dedupe() noexcept {
@@ -247,6 +283,7 @@ class StealingWorkers {
   template <class Process>
   void drain(Worker& me, WorkerId w, Process& process) {
     const auto start = Clock::now();
+    if (me.span.first_claim_at == 0) me.span.first_claim_at = steady_ns(start);
     while (const std::optional<ItemId> id = me.owner.try_claim()) {
       ++me.stats.items_processed;
       try {
@@ -256,7 +293,10 @@ class StealingWorkers {
       }
     }
     me.owner.log_claimed(me.log);
-    me.stats.busy_ns += elapsed_ns(start);
+    const auto end = Clock::now();
+    me.stats.busy_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(end - start).count();
+    ++me.stats.claims;
+    me.span.last_done_at = steady_ns(end);
   }
 
   // The idle loop (paper §4.2.1 lines 61-68): victims in this worker's random order, each round starting one
@@ -267,7 +307,10 @@ class StealingWorkers {
       for (std::uint32_t i = 0; i < n; ++i) {
         const WorkerId v = me.victims[(me.victim_cursor + i) % n];
         ++me.stats.steal_attempts;
-        switch (me.thief.try_steal(*slots_[v])) {
+        StealClock clock;
+        const StealOutcome outcome = me.thief.try_steal(*slots_[v], clock);
+        me.stats.transient_wait_ns += clock.waited;  // inside this attempt: search's, or the steal's below
+        switch (outcome) {
           case StealOutcome::kLockBusy: ++me.stats.steals_lock_busy; break;
           case StealOutcome::kEmpty: ++me.stats.steals_empty; break;
           case StealOutcome::kSkippedAll:
@@ -280,6 +323,8 @@ class StealingWorkers {
             me.stats.items_stolen += frontsteal::item_count(me.thief.share());
             me.owner.install(me.thief.share());
             me.victim_cursor = (me.victim_cursor + i + 1) % n;
+            me.steal_locked_at = clock.locked_at;
+            me.stats.steal_ns += Timer::now() - clock.locked_at;
             return true;
         }
       }

@@ -1,4 +1,15 @@
-// frame_stats.hpp — what one frame cost, per worker: the numbers behind utilization (paper Table 1).
+// frame_stats.hpp — what one frame cost, per worker: the numbers behind utilization (paper Table 1) and the
+// raw times of the loss account (where a worker's part of the frame went: wake-up, items, looking for work,
+// stealing, waiting on ListTransient, the frame's end).
+//
+// The account's times partition a worker's part of the scheduler's own window [release, done] (wall_ns):
+//   wake_ns + busy_ns + search_ns + steal_ns + termination_ns + (time between them no phase claims)
+// where transient_wait_ns is part of search_ns or steal_ns, and busy_ns holds the `claims` timed claims, each
+// of one or more items with the scheduler's per-item claim between them (the owner path of a drain). A scheduler fills
+// what it can see: every scheduler wake_ns and termination_ns (from the clock reads it makes around its claims anyway);
+// the stealing protocol (frame_loop.hpp) also search, steal and wait; the others leave those 0, so the time between
+// their claims stays one term. The harness closes the account against its own clock
+// (schedulers/main_job/loss_account.hpp).
 #pragma once
 
 #include <algorithm>
@@ -9,6 +20,7 @@ namespace frontsteal {
 
 struct WorkerFrameStats {
   std::uint64_t items_processed = 0;     // calls of the item function by this worker
+  std::uint64_t claims = 0;              // timed claims: drains of its own list (stealing), chunks (others)
   std::uint64_t steal_attempts = 0;      // victims examined
   std::uint64_t steals_lock_busy = 0;    // ... whose LockList another thief held
   std::uint64_t steals_empty = 0;        // ... that had nothing left
@@ -25,9 +37,16 @@ struct WorkerFrameStats {
                                          // oneTBB: the sum of its claims (its threads join the arena freely)
   std::int64_t cpu_ns = 0;               // thread CPU time over the same span (core/thread_cpu_time.hpp):
                                          // active − cpu is time off a CPU (descheduled, or asleep on a lock)
+  std::int64_t wake_ns = 0;              // release of the frame → the start of this worker's first claim
+  std::int64_t termination_ns = 0;       // the end of its last claim's items → the caller sees the frame done
+  std::int64_t search_ns = 0;            // looking for work that was then found: victims examined, lock busy,
+                                         // empty, polls (stealing only)
+  std::int64_t steal_ns = 0;             // successful steals: victim's LockList held → share installed
+  std::int64_t transient_wait_ns = 0;    // of search_ns + steal_ns, waiting at T4 on a victim's ListTransient
 
   WorkerFrameStats& operator+=(const WorkerFrameStats& o) {
     items_processed += o.items_processed;
+    claims += o.claims;
     steal_attempts += o.steal_attempts;
     steals_lock_busy += o.steals_lock_busy;
     steals_empty += o.steals_empty;
@@ -41,13 +60,20 @@ struct WorkerFrameStats {
     idle_ns += o.idle_ns;
     active_ns += o.active_ns;
     cpu_ns += o.cpu_ns;
+    wake_ns += o.wake_ns;
+    termination_ns += o.termination_ns;
+    search_ns += o.search_ns;
+    steal_ns += o.steal_ns;
+    transient_wait_ns += o.transient_wait_ns;
     return *this;
   }
 };
 
 struct FrameStats {
   std::uint32_t frame = 0;
-  std::int64_t wall_ns = 0;  // caller's view: release of the frame to its completion
+  std::int64_t wall_ns = 0;   // caller's view: release of the frame to its completion
+  bool phases_timed = false;  // search_ns, steal_ns, transient_wait_ns measured (the stealing protocol with a
+                              // SteadyPhaseTimer): the time between claims is split, not one term
   std::vector<WorkerFrameStats> workers;
 
   WorkerFrameStats totals() const {

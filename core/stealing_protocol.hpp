@@ -196,6 +196,15 @@ enum class [[nodiscard]] StealOutcome : std::uint8_t{
     kStolen,      // share() holds at least one item, ready to install
 };
 
+// What try_steal tells an observer: the victim's LockList is held (locked); a wait at T4 begins (wait_begins, at
+// the first poll that finds ListTransient raised) and is over (wait_over, after every attempt that reached T4,
+// whether it waited or not). The default does nothing and compiles away.
+struct NoStealObserver {
+  void locked() noexcept {}
+  void wait_begins() noexcept {}
+  void wait_over() noexcept {}
+};
+
 template <class Backend, class Policy>
 class Thief {
  public:
@@ -207,9 +216,13 @@ class Thief {
   Thief(const Thief&) = delete;
   Thief& operator=(const Thief&) = delete;
 
-  // One steal attempt (paper §4.2.1 lines 62-66 with §4.2.2 lines 651-654).
-  StealOutcome try_steal(Slot& victim) noexcept {
+  // One steal attempt (paper §4.2.1 lines 62-66 with §4.2.2 lines 651-654). `observe` is told when the
+  // victim's LockList is held and when a wait at T4 starts and ends (the loss account's clock reads, see
+  // NoStealObserver); it reads no shared state and changes no step.
+  template <class Observer = NoStealObserver>
+  StealOutcome try_steal(Slot& victim, Observer&& observe = Observer{}) noexcept {
     if (!lock_victim(victim)) return StealOutcome::kLockBusy;
+    observe.locked();
     if (!plan_share(victim)) {
       unlock_victim(victim);
       return StealOutcome::kEmpty;
@@ -217,8 +230,10 @@ class Thief {
     shrink_victim(victim);
     storeload_fence();
     for (std::uint32_t spins = 0; !victim_quiescent(victim); ++spins) {
+      if (spins == 0) observe.wait_begins();
       Backend::spin_pause(Site::kThiefAwaitTransient, spins);
     }
+    observe.wait_over();
     const std::uint32_t front_after = reread_front(victim);
     unlock_victim(victim);
     return keep_unclaimed(front_after);

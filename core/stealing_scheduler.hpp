@@ -3,9 +3,15 @@
 // Usage:
 //   frontsteal::StealingScheduler<frontsteal::Fenced> s({.workers = 4, .items = n, .seed = 1});
 //   const FrameStats& st = s.run_frame([&](ItemId id, WorkerId w) { tessellate(id); });
-// Threads are created once and sleep between frames (futex). A frame returns when every item ran; if an item
-// function threw, the frame still completes every other item and run_frame then throws ItemError naming the
-// item. The next frame starts from each worker's list at the end of this one (paper §4.2.1).
+// Workers are threads created once that sleep between frames (futex); the caller releases a frame and waits.
+// With caller_works the calling thread runs worker 0's part itself (as oneTBB and OpenMP do) and only workers
+// 1 .. P-1 are threads: one wake-up less per frame. Measured by the main job against the default (paired rounds,
+// 216 per P on a 2-vCPU VM) it was equivalent within +-2 % (P = 1: -0.4 % [-0.8, +0.0]; P = 2: +0.5 % [-0.7,
+// +1.8]): the wake-up that costs is a sleeping vCPU's (0.5-0.6 ms there), which it does not remove. So it is
+// an option, not the default (schedulers/registry.hpp: stealing/Fenced:caller-works).
+// A frame returns when every item ran; if an item function threw, the frame still completes every other item and
+// run_frame then throws ItemError naming the item. The next frame starts from each worker's list at the end of
+// this one (paper §4.2.1).
 #pragma once
 
 #include <atomic>
@@ -21,6 +27,7 @@
 #include "core/frame_loop.hpp"
 #include "core/frame_stats.hpp"
 #include "core/membarrier.hpp"
+#include "core/phase_timer.hpp"
 #include "core/std_backend.hpp"
 
 namespace frontsteal {
@@ -53,16 +60,21 @@ class ItemError : public std::runtime_error {
 struct SchedulerOptions {
   WorkerId workers = 2;
   ItemId items = 0;
-  std::uint64_t seed = 1;  // victim orders; the same seed gives the same orders
+  std::uint64_t seed = 1;     // victim orders; the same seed gives the same orders
+  bool caller_works = false;  // the calling thread runs worker 0's part of each frame (see above)
 };
 
-template <class Policy, class Backend = StdBackend>
+// Timer: SteadyPhaseTimer fills the loss account's phase times (frame_stats.hpp); NoPhaseTimer leaves search,
+// steal and wait at 0 and adds no clock read (wake-up and termination come from reads made anyway).
+template <class Policy, class Backend = StdBackend, class Timer = SteadyPhaseTimer>
 class StealingScheduler {
  public:
   explicit StealingScheduler(const SchedulerOptions& options)
-      : core_((require_fences(), options.workers), options.items, options.seed) {
+      : core_((require_fences(), options.workers), options.items, options.seed), caller_works_(options.caller_works) {
     threads_.reserve(options.workers);
-    for (WorkerId w = 0; w < options.workers; ++w) threads_.emplace_back([this, w] { worker_main(w); });
+    for (WorkerId w = caller_works_ ? 1 : 0; w < options.workers; ++w) {
+      threads_.emplace_back([this, w] { worker_main(w); });
+    }
   }
   StealingScheduler(const StealingScheduler&) = delete;
   StealingScheduler& operator=(const StealingScheduler&) = delete;
@@ -82,12 +94,25 @@ class StealingScheduler {
     ++frame_;
     const auto start = std::chrono::steady_clock::now();
     core_.release_frame(frame_);
+    if (caller_works_) {
+      core_.await_frame_start(frame_);  // returns at once: this thread saw frame-1 done and released this one
+      core_.run_frame(0, frame_, process_);
+    }
     core_.await_frame_done(frame_);
+    const auto done = std::chrono::steady_clock::now();
     last_.frame = frame_;
-    last_.wall_ns =
-        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+    last_.wall_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(done - start).count();
+    last_.phases_timed = Timer::kOn;
     last_.workers.resize(core_.worker_count());
-    for (WorkerId w = 0; w < core_.worker_count(); ++w) last_.workers[w] = core_.stats(w);
+    for (WorkerId w = 0; w < core_.worker_count(); ++w) {
+      WorkerFrameStats& ws = last_.workers[w] = core_.stats(w);
+      // The account's ends, against this caller's release and done (the same clock the workers stamped with).
+      const ClaimSpan& span = core_.claim_span(w);
+      if (span.first_claim_at != 0) {
+        ws.wake_ns = span.first_claim_at - steady_ns(start);
+        ws.termination_ns = steady_ns(done) - span.last_done_at;
+      }
+    }
     for (WorkerId w = 0; w < core_.worker_count(); ++w) {
       if (const auto& f = core_.failure(w)) throw ItemError(f->item, f->worker, f->error);
     }
@@ -130,7 +155,8 @@ class StealingScheduler {
     }
   }
 
-  StealingWorkers<Backend, Policy> core_;
+  StealingWorkers<Backend, Policy, Timer> core_;
+  bool caller_works_;
   ItemFunction process_;
   std::uint32_t frame_ = 0;
   std::atomic<bool> stop_{false};
