@@ -31,7 +31,7 @@ const sched::SchedulerInfo& usable(const std::string& name) {
 std::vector<std::string> LiveGreedy::scheduler_names() {
   std::vector<std::string> out;
   for (const sched::SchedulerInfo& info : sched::scheduler_registry()) {
-    if (info.contract == Contract::kExactlyOnce) out.push_back(info.name);
+    if (info.contract == Contract::kExactlyOnce && !info.variant) out.push_back(info.name);
   }
   return out;
 }

@@ -59,13 +59,13 @@ class ConcurrentQueueScheduler final : public Scheduler {
 
   const FrameStats& run_frame(ItemFunctionRef process) override {
     process_ = &process;
-    for (auto& s : slots_) s.stats = {};
+    for (auto& s : slots_) s.begin_frame();
     // Refill: published to the workers by the team's release (T1).
     if (!chunks_.empty() && !queue_.enqueue_bulk(producer_, chunks_.begin(), chunks_.size())) {
       throw std::bad_alloc();
     }
-    const std::int64_t wall_ns = team_->run_frame();
-    return collect(stats_, slots_, wall_ns, &team_->spans());
+    const FrameWindow window = team_->run_frame();
+    return collect(stats_, slots_, window, &team_->spans());
   }
   WorkerId worker_count() const noexcept override { return team_->size(); }
   ItemId grain() const noexcept { return claims_.grain; }

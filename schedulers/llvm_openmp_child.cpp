@@ -254,9 +254,10 @@ std::vector<ChildFrame> LlvmOpenMpChild::run_frames(int first, int last) {
     if (line == "end") break;
     if (line.rfind("error ", 0) == 0) throw std::runtime_error(line.substr(6));
     const auto t = split(line, ' ');
-    // frame f wall triangles inconsistent P {6 per worker} runs
+    // frame f wall triangles inconsistent P {9 per worker} runs
+    constexpr std::uint32_t kPerWorker = 9;
     std::uint32_t p = 0;
-    if (t.size() < 7 || t[0] != "frame" || !parse_int(t[5], p) || p != workers_ || t.size() != 7 + 6u * p) {
+    if (t.size() < 7 || t[0] != "frame" || !parse_int(t[5], p) || p != workers_ || t.size() != 7 + kPerWorker * p) {
       throw bad(line, "malformed frame line");
     }
     ChildFrame cf;
@@ -268,20 +269,23 @@ std::vector<ChildFrame> LlvmOpenMpChild::run_frames(int first, int last) {
     cf.stats.frame = static_cast<std::uint32_t>(++frame_counter_);
     cf.stats.workers.resize(p);
     for (std::uint32_t w = 0; w < p; ++w) {
-      std::int64_t v[6];
-      for (int k = 0; k < 6; ++k) {
-        if (!parse_int(t[6 + 6 * w + static_cast<std::uint32_t>(k)], v[k])) throw bad(line, "malformed worker field");
+      std::int64_t v[kPerWorker];
+      for (std::uint32_t k = 0; k < kPerWorker; ++k) {
+        if (!parse_int(t[6 + kPerWorker * w + k], v[k])) throw bad(line, "malformed worker field");
       }
       WorkerFrameStats& ws = cf.stats.workers[w];
       ws.items_processed = static_cast<std::uint64_t>(v[0]);
-      ws.busy_ns = v[1];
-      ws.idle_ns = cf.stats.wall_ns - v[1];
-      ws.active_ns = v[2];
-      ws.cpu_ns = v[3];
+      ws.claims = static_cast<std::uint64_t>(v[1]);
+      ws.busy_ns = v[2];
+      ws.idle_ns = cf.stats.wall_ns - v[2];
+      ws.active_ns = v[3];
+      ws.cpu_ns = v[4];
       // Steals: chunks this thread ran that libomp's static ranges gave another. Failed attempts are not
       // observable from outside libomp: attempts = successes.
-      ws.steals_succeeded = ws.steal_attempts = static_cast<std::uint64_t>(v[4]);
-      ws.items_stolen = static_cast<std::uint64_t>(v[5]);
+      ws.steals_succeeded = ws.steal_attempts = static_cast<std::uint64_t>(v[5]);
+      ws.items_stolen = static_cast<std::uint64_t>(v[6]);
+      ws.wake_ns = v[7];
+      ws.termination_ns = v[8];
     }
     if (!decode_runs(t.back(), items_, runs))
       throw bad(line, "per-item counts do not cover the " + std::to_string(items_) + " items");

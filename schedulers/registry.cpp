@@ -22,6 +22,18 @@ SchedulerInfo stealing_entry() {
           }};
 }
 
+// A variant of stealing/<Policy> (registry.hpp lists them).
+template <class Policy, class Timer>
+SchedulerInfo stealing_variant(const std::string& suffix, const std::string& what, bool caller_works) {
+  SchedulerInfo info{"stealing/" + std::string(Policy::kName) + ":" + suffix,
+                     "variant of stealing/" + std::string(Policy::kName) + ": " + what, Policy::kContract, true,
+                     [caller_works](const SchedulerConfig& c, const WorkloadHints&) -> std::unique_ptr<Scheduler> {
+                       return std::make_unique<StealingAdapter<Policy, Timer>>(c, caller_works);
+                     }};
+  info.variant = true;
+  return info;
+}
+
 std::vector<SchedulerInfo> build() {
   std::vector<SchedulerInfo> all;
   all.push_back({"round-robin", "static, item i on worker i mod P (paper §3)", Contract::kExactlyOnce, true,
@@ -57,13 +69,21 @@ std::vector<SchedulerInfo> build() {
   all.push_back(stealing_entry<Minimal>());
   if (membarrier_status().available) all.push_back(stealing_entry<Asymmetric>());
   all.push_back(stealing_entry<Paper>());
+  all.push_back(stealing_variant<Fenced, SteadyPhaseTimer>(
+      "caller-works", "the calling thread runs worker 0's part of each frame", true));
+  SchedulerInfo unaccounted = stealing_variant<Fenced, NoPhaseTimer>(
+      "no-account", "no loss account (phase timer off, items not sampled)", false);
+  unaccounted.account = false;
+  all.push_back(std::move(unaccounted));
   all.push_back({"chase-lev", "Chase-Lev deques (Le et al. PPoPP'13 orders), binary range splitting",
                  Contract::kExactlyOnce, true,
                  [](const SchedulerConfig& c, const WorkloadHints&) -> std::unique_ptr<Scheduler> {
                    return std::make_unique<ChaseLevScheduler>(c);
                  }});
-  all.push_back({"tbb-affinity", "oneTBB parallel_for with affinity_partitioner", Contract::kExactlyOnce, false,
-                 [](const SchedulerConfig& c, const WorkloadHints&) { return make_tbb_affinity_scheduler(c); }});
+  SchedulerInfo tbb{"tbb-affinity", "oneTBB parallel_for with affinity_partitioner", Contract::kExactlyOnce, false,
+                    [](const SchedulerConfig& c, const WorkloadHints&) { return make_tbb_affinity_scheduler(c); }};
+  tbb.cpu_time = false;
+  all.push_back(std::move(tbb));
   all.push_back({"openmp-dynamic", "OpenMP schedule(dynamic)", Contract::kExactlyOnce, false,
                  [](const SchedulerConfig& c, const WorkloadHints&) { return make_openmp_dynamic_scheduler(c); }});
   return all;

@@ -14,6 +14,12 @@
 // Not in this table (another process, another OpenMP runtime): openmp-static-steal, LLVM libomp's
 // static_steal, run by the main job as a child process (schedulers/llvm_openmp/, llvm_openmp_child.hpp).
 //
+// Variants (SchedulerInfo::variant, never in `all`):
+//   stealing/Fenced:caller-works      the calling thread runs worker 0's part of each frame (core/
+//                                     stealing_scheduler.hpp: tried, equivalent, not the default)
+//   stealing/Fenced:no-account        no loss account: no phase timer (core/phase_timer.hpp), and the main job
+//                                     samples none of its items (measure/item_sampler.hpp): what the account costs
+//
 // Static spatial schedulers use WorkloadHints (centres, estimated costs); the others ignore it.
 #pragma once
 
@@ -33,6 +39,16 @@ struct SchedulerInfo {
   Contract contract = Contract::kExactlyOnce;  // at-least-once: stealing/Paper only
   bool tsan_clean = true;                      // false: its runtime is not built with ThreadSanitizer (TBB, OpenMP)
   std::function<std::unique_ptr<Scheduler>(const SchedulerConfig&, const WorkloadHints&)> make;
+  // A variant of another entry, named "<entry>:<what differs>", for measuring one design choice against it (the
+  // main job's --schedulers; `all` leaves variants out): the previous design of a lever that was kept, or the
+  // account's counters switched off.
+  bool variant = false;
+  // Its workers' thread CPU time is measured (false: oneTBB, whose threads join the arena per claim, where the
+  // system-call clock around every claim cost more than the claims; cpu_ns is then active_ns).
+  bool cpu_time = true;
+  // The loss account is taken for it (the harness samples its items; its phases are timed where it has any).
+  // false: the variant that measures what the account costs (stealing/Fenced:no-account).
+  bool account = true;
 };
 
 // Every scheduler this build can run (stealing/Asymmetric only where membarrier is available), in table order.

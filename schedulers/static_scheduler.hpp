@@ -48,7 +48,7 @@ class StaticScheduler final : public TeamScheduler<StaticScheduler> {
     WorkerSlot& me = slot(w);
     const Clock::time_point start = Clock::now();  // one pair of clock reads per frame: always on
     for (ItemId id : assignment_[w]) me.run(process(), id, w);
-    me.stats.busy_ns = nanoseconds_since(start);
+    me.add_claim(start, Clock::now());
   }
 
   Assignment assignment_;

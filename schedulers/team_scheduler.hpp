@@ -27,9 +27,9 @@ class TeamScheduler : public Scheduler {
   const FrameStats& run_frame(ItemFunctionRef process) final {
     process_ = &process;
     derived().begin_frame();  // published to the workers by the team's release (T1)
-    for (auto& s : slots_) s.stats = {};
-    const std::int64_t wall_ns = team_.run_frame();
-    return collect(stats_, slots_, wall_ns, &team_.spans());
+    for (auto& s : slots_) s.begin_frame();
+    const FrameWindow window = team_.run_frame();
+    return collect(stats_, slots_, window, &team_.spans());
   }
   WorkerId worker_count() const noexcept final { return team_.size(); }
 

@@ -27,6 +27,7 @@
 
 #include "core/frame_loop.hpp"
 #include "core/frame_stats.hpp"
+#include "core/phase_timer.hpp"
 #include "core/stealing_scheduler.hpp"
 #include "core/thread_cpu_time.hpp"
 #include "schedulers/scheduler.hpp"
@@ -39,10 +40,32 @@ inline std::int64_t nanoseconds_since(Clock::time_point start) {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count();
 }
 
+// The caller's view of one frame: from just before the release to just after it saw the frame done.
+struct FrameWindow {
+  Clock::time_point release, done;
+  std::int64_t ns() const { return std::chrono::duration_cast<std::chrono::nanoseconds>(done - release).count(); }
+};
+
 // What one worker gathers in one frame; a cache line of its own.
 struct alignas(64) WorkerSlot {
   WorkerFrameStats stats;
   std::optional<ItemFailure> failure;
+  Clock::time_point run_start_{};  // begin_run's start
+  // The start of this frame's first timed claim and the end of its last (0: none yet): the loss account's
+  // wake-up and termination, from the clock reads the busy time makes anyway.
+  std::int64_t first_claim_at = 0, last_done_at = 0;
+
+  void begin_frame() {
+    stats = {};
+    first_claim_at = last_done_at = 0;
+  }
+  // One timed claim [start, end): its busy time and the account's ends.
+  void add_claim(Clock::time_point start, Clock::time_point end) {
+    stats.busy_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(end - start).count();
+    ++stats.claims;
+    if (first_claim_at == 0) first_claim_at = steady_ns(start);
+    last_done_at = steady_ns(end);
+  }
 
   // Runs one item; an exception is recorded (the first one only) and the frame goes on.
   void run(ItemFunctionRef process, ItemId id, WorkerId w) {
@@ -53,11 +76,20 @@ struct alignas(64) WorkerSlot {
     }
     ++stats.items_processed;
   }
-  // Runs [first, last) and adds its duration to busy_ns when `timed`.
+  // A run of claims timed as one, for schedulers whose claims are single items (OpenMP's dynamic,1; Chase-Lev's
+  // leaves): two clock reads per item would cost ~100 ns here, more than the claim itself, so the busy time is the
+  // run's, with the claims between its items inside it, as the stealing protocol's drain is.
+  void begin_run(bool timed) {
+    if (timed) run_start_ = Clock::now();
+  }
+  void end_run(bool timed) {
+    if (timed) add_claim(run_start_, Clock::now());
+  }
+  // Runs [first, last) and adds it as a claim (add_claim) when `timed`.
   void run_range(ItemFunctionRef process, ItemId first, ItemId last, WorkerId w, bool timed) {
     const Clock::time_point start = timed ? Clock::now() : Clock::time_point{};
     for (ItemId id = first; id < last; ++id) run(process, id, w);
-    if (timed) stats.busy_ns += nanoseconds_since(start);
+    if (timed) add_claim(start, Clock::now());
   }
 };
 
@@ -69,14 +101,20 @@ struct alignas(64) WorkerSpan {
 
 // Gathers the slots into a FrameStats and throws ItemError for the first recorded failure. `spans`, when
 // given (one per slot), supplies active_ns and cpu_ns; otherwise the slots carry their own (OpenMP, oneTBB).
-inline const FrameStats& collect(FrameStats& out, std::vector<WorkerSlot>& slots, std::int64_t wall_ns,
+// Wake-up and termination are the slots' first and last claims against the caller's window.
+inline const FrameStats& collect(FrameStats& out, std::vector<WorkerSlot>& slots, const FrameWindow& window,
                                  const std::vector<WorkerSpan>* spans = nullptr) {
   ++out.frame;
+  const std::int64_t wall_ns = window.ns();
   out.wall_ns = wall_ns;
   out.workers.resize(slots.size());
   for (std::size_t w = 0; w < slots.size(); ++w) {
     out.workers[w] = slots[w].stats;
     out.workers[w].idle_ns = wall_ns - slots[w].stats.busy_ns;
+    if (slots[w].first_claim_at != 0) {
+      out.workers[w].wake_ns = slots[w].first_claim_at - steady_ns(window.release);
+      out.workers[w].termination_ns = steady_ns(window.done) - slots[w].last_done_at;
+    }
     if (spans) {
       out.workers[w].active_ns = (*spans)[w].active_ns;
       out.workers[w].cpu_ns = (*spans)[w].cpu_ns;
@@ -109,8 +147,8 @@ class WorkerTeam {
     for (auto& t : threads_) t.join();
   }
 
-  // Runs body(w) on every worker once; returns the wall time from release to the last arrival.
-  std::int64_t run_frame() {
+  // Runs body(w) on every worker once; returns the caller's window, from the release to the last arrival.
+  FrameWindow run_frame() {
     const Clock::time_point start = Clock::now();
     publish(++frame_);
     const std::uint64_t target = std::uint64_t{frame_} * workers_;
@@ -118,7 +156,7 @@ class WorkerTeam {
          a = arrived_.load(std::memory_order::acquire)) {
       arrived_.wait(a, std::memory_order::acquire);  // T4
     }
-    return nanoseconds_since(start);
+    return {start, Clock::now()};
   }
   WorkerId size() const noexcept { return workers_; }
   // Per worker, its part of the last frame (read by the caller after run_frame: ordered by T3 -> T4).

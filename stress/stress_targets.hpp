@@ -92,7 +92,7 @@ class RacyCounterScheduler final : public sched::Scheduler {
   const FrameStats& run_frame(sched::ItemFunctionRef process) override {
     process_ = &process;
     next_.store(0, std::memory_order::relaxed);
-    for (auto& s : slots_) s.stats = {};
+    for (auto& s : slots_) s.begin_frame();
     return sched::collect(stats_, slots_, team_.run_frame());
   }
   WorkerId worker_count() const noexcept override { return team_.size(); }

@@ -5,8 +5,9 @@
 
 namespace frontsteal::tess {
 
-FrameWorkload::FrameWorkload(PathScene& scene, WorkerId workers)
+FrameWorkload::FrameWorkload(PathScene& scene, WorkerId workers, Buffers buffers)
     : scene_(&scene),
+      own_(buffers == Buffers::kOwn ? scene.surfaces() : 0),
       scratch_(std::max<WorkerId>(1, workers)),
       triangles_(scene.surfaces(), 0),
       inconsistent_(scene.surfaces(), 0),
@@ -35,11 +36,12 @@ SurfaceResult FrameWorkload::run(int f, ItemId id, WorkerId w) {
   SurfaceResult r;
   if (reuse_) {
     const ReuseOutcome o = tessellate_or_reuse(scene_->prepared[id], scene_->cameras[f], scene_->frusta[f],
-                                               scene_->settings, scratch_[w], scene_->buffers[id], kept_[id]);
+                                               scene_->settings, scratch_[w], buffer(id), kept_[id]);
     r = o.result;
     remade_[id] = o.remade;
   } else {
-    r = scene_->tessellate(f, id, scratch_[w]);
+    r = tessellate_surface(scene_->prepared[id], scene_->cameras[f], scene_->frusta[f], scene_->settings, scratch_[w],
+                           buffer(id));
     remade_[id] = 1;
   }
   triangles_[id] = r.triangles;

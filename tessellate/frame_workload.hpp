@@ -14,7 +14,9 @@
 //
 // OWNERSHIP while a frame runs: run(f, id, w) writes only surface id's slots (each item runs exactly once
 // per frame) and worker w's scratch (one thread per worker at a time). The totals are read after the frame,
-// once the scheduler's end of frame has ordered every item's writes before the reader.
+// once the scheduler's end of frame has ordered every item's writes before the reader. With Buffers::kOwn the
+// triangles go to buffers of this workload's own instead of the scene's, so several workloads over one scene
+// can each run a whole frame at the same time (the main job's limit arm: P serial loops at once).
 #pragma once
 
 #include <cstdint>
@@ -29,8 +31,10 @@ namespace frontsteal::tess {
 
 class FrameWorkload {
  public:
+  enum class Buffers { kScene, kOwn };  // where run() writes a surface's triangles
+
   // Refers to `scene` (which must outlive it) with scratch for `workers` workers (at least one).
-  FrameWorkload(PathScene& scene, WorkerId workers);
+  FrameWorkload(PathScene& scene, WorkerId workers, Buffers buffers = Buffers::kScene);
 
   PathScene& scene() noexcept { return *scene_; }
   const PathScene& scene() const noexcept { return *scene_; }
@@ -62,7 +66,9 @@ class FrameWorkload {
 
  private:
   static std::uint64_t count(const std::vector<std::uint8_t>& flags);
+  TriangleBuffers& buffer(ItemId id) noexcept { return own_.empty() ? scene_->buffers[id] : own_[id]; }
   PathScene* scene_;
+  std::vector<TriangleBuffers> own_;  // Buffers::kOwn: one per surface; empty: the scene's
   std::vector<TessellationScratch> scratch_;
   std::vector<KeptTessellation> kept_;  // per surface, with reuse on
   bool reuse_ = false;

@@ -21,8 +21,9 @@
 //                     untimed, and prints  "ready items=N workers=P chunk=C chunks=K schedule=static-steal
 //                     probe=confirmed:<attempts>"  or  "error <reason>"  (exit 1).
 //   "path"            runs every frame of the path, one line per frame:
-//                       frame <f> <wall_ns> <triangles> <inconsistent> <P> {<items> <busy_ns> <active_ns>
-//                       <cpu_ns> <chunks_stolen> <items_stolen>} x P <runs>
+//                       frame <f> <wall_ns> <triangles> <inconsistent> <P> {<items> <claims> <busy_ns>
+//                       <active_ns> <cpu_ns> <chunks_stolen> <items_stolen> <wake_ns> <termination_ns>} x P
+//                       <runs>
 //                     with <runs> the per-item execution counts of the frame, run-length encoded as
 //                     "count*length,count*length,..." (all ones: "1*N"); then, once libomp's threads
 //                     are asleep (settle(): a soft pause, checked), "end".

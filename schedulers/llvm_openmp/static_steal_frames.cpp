@@ -42,15 +42,17 @@ StaticStealFrames::StaticStealFrames(const Options& o) : o_(o) {
   chunks_ = (n_ + grain_ - 1) / grain_;
   frames_.emplace(scene_, static_cast<frontsteal::WorkerId>(o.workers));
   frames_->set_reuse(o.reuse);
-  runs_ = std::vector<std::atomic<std::uint32_t>>(static_cast<std::size_t>(n_));
+  runs_.assign(static_cast<std::size_t>(n_), 0);
   runner_.assign(static_cast<std::size_t>(n_), -1);
   workers_.resize(static_cast<std::size_t>(o.workers));
+  for (Worker& w : workers_) w.ran.reserve(static_cast<std::size_t>(n_));
 }
 
+// The exactly-once audit's record is a plain store into the thread's own log: a locked increment per item would
+// wait for the item's stores to drain (~30 ns here), a cost OpenMP programs do not pay (core/execution_log.hpp).
 void StaticStealFrames::run_item(int f, long long id, int t) {
   frames_->run(f, static_cast<frontsteal::ItemId>(id), static_cast<frontsteal::WorkerId>(t));
-  runs_[id].fetch_add(1, std::memory_order_relaxed);  // read after the region's end (its barrier orders it)
-  runner_[id] = t;
+  workers_[t].ran.push_back(static_cast<std::int32_t>(id));
   ++workers_[t].items;
 }
 
@@ -59,7 +61,12 @@ void StaticStealFrames::run_item(int f, long long id, int t) {
 std::int64_t StaticStealFrames::run_frame(int f) {
   const int P = o_.workers;
   const int chunks32 = static_cast<int>(chunks_);  // the caller checked that it fits
-  for (auto& w : workers_) w = Worker{};
+  for (auto& w : workers_) {
+    w.items = w.claims = w.busy_ns = w.active_ns = w.cpu_ns = w.chunks_stolen = w.items_stolen = 0;
+    w.wake_ns = w.termination_ns = 0;
+    w.ran.clear();
+  }
+  std::vector<Clock::time_point> first_claim(static_cast<std::size_t>(P)), last_done(static_cast<std::size_t>(P));
   const Clock::time_point start = Clock::now();
 #pragma omp parallel num_threads(P)
   {
@@ -67,23 +74,48 @@ std::int64_t StaticStealFrames::run_frame(int f) {
     if (o_.pin) pinning_.pin_this_thread(static_cast<unsigned>(t));
     const Clock::time_point span = Clock::now();
     const std::int64_t cpu = frontsteal::thread_cpu_ns();
+    bool claimed = false;
     // A 32-bit induction variable: libomp's lock-free static_steal (one 64-bit CAS on a thread's (count,
     // limit) pair); 64-bit ones take a per-thread lock for every chunk (kmp_dispatch.cpp, type_size > 4).
 #pragma omp for schedule(runtime) nowait
     for (int ci = 0; ci < chunks32; ++ci) {
+      if (!claimed) {
+        first_claim[static_cast<std::size_t>(t)] = Clock::now();
+        claimed = true;
+      }
       const long long c = ci;
-      const Clock::time_point claim = Clock::now();
       for (long long id = c * grain_; id < std::min((c + 1) * grain_, n_); ++id) {
         if (id == o_.fault_item && o_.fault == Options::Fault::drop) continue;
         run_item(f, id, t);
         if (id == o_.fault_item && o_.fault == Options::Fault::dup) run_item(f, id, t);
       }
-      workers_[t].busy_ns += ns_since(claim);
+    }
+    if (claimed) {
+      last_done[static_cast<std::size_t>(t)] = Clock::now();
+      workers_[t].claims = 1;
+      workers_[t].busy_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                last_done[static_cast<std::size_t>(t)] - first_claim[static_cast<std::size_t>(t)])
+                                .count();
     }
     workers_[t].active_ns = ns_since(span);
     workers_[t].cpu_ns = frontsteal::thread_cpu_ns() - cpu;
   }
-  const std::int64_t wall = ns_since(start);
+  const Clock::time_point end = Clock::now();
+  const std::int64_t wall = std::chrono::duration_cast<std::chrono::nanoseconds>(end - start).count();
+  for (int t = 0; t < P; ++t) {
+    Worker& w = workers_[static_cast<std::size_t>(t)];
+    if (w.claims == 0) continue;
+    w.wake_ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(first_claim[static_cast<std::size_t>(t)] - start).count();
+    w.termination_ns =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(end - last_done[static_cast<std::size_t>(t)]).count();
+  }
+  for (int t = 0; t < P; ++t) {
+    for (const std::int32_t id : workers_[static_cast<std::size_t>(t)].ran) {
+      ++runs_[static_cast<std::size_t>(id)];
+      runner_[static_cast<std::size_t>(id)] = t;
+    }
+  }
   const bool static_ranges = P > 1 && chunks_ >= P;  // libomp's own condition for static_steal's ranges
   if (static_ranges) {
     for (long long c = 0; c < chunks_; ++c) {
@@ -99,15 +131,15 @@ std::int64_t StaticStealFrames::run_frame(int f) {
 
 void StaticStealFrames::warm_up() {
   run_frame(0);
-  for (auto& r : runs_) r.store(0, std::memory_order_relaxed);
+  std::fill(runs_.begin(), runs_.end(), 0u);
 }
 
 std::string StaticStealFrames::encoded_runs() {
   std::string out;
   for (long long i = 0; i < n_;) {
-    const std::uint32_t v = runs_[i].load(std::memory_order_relaxed);
+    const std::uint32_t v = runs_[i];
     long long j = i;
-    while (j < n_ && runs_[j].load(std::memory_order_relaxed) == v) runs_[j++].store(0, std::memory_order_relaxed);
+    while (j < n_ && runs_[j] == v) runs_[j++] = 0;
     out += (i ? "," : "") + std::to_string(v) + '*' + std::to_string(j - i);
     i = j;
   }
@@ -122,7 +154,8 @@ std::string StaticStealFrames::frame_line(int f) {
   std::string out = "frame " + std::to_string(f) + ' ' + std::to_string(wall) + ' ' + std::to_string(tri) + ' ' +
                     std::to_string(bad) + ' ' + std::to_string(o_.workers);
   for (const Worker& w : workers_) {
-    for (std::int64_t v : {w.items, w.busy_ns, w.active_ns, w.cpu_ns, w.chunks_stolen, w.items_stolen}) {
+    for (std::int64_t v : {w.items, w.claims, w.busy_ns, w.active_ns, w.cpu_ns, w.chunks_stolen, w.items_stolen,
+                           w.wake_ns, w.termination_ns}) {
       out += ' ' + std::to_string(v);
     }
   }

@@ -34,9 +34,12 @@ class StaticStealFrames {
   // Frame 0 once, untimed, as the main job does for every in-process scheduler; the counts are reset.
   void warm_up();
   // Runs frame f and returns its protocol line (without the newline):
-  //   frame <f> <wall_ns> <triangles> <inconsistent> <P> {<items> <busy_ns> <active_ns> <cpu_ns>
-  //   <chunks_stolen> <items_stolen>} x P <runs>
-  // with <runs> the per-item execution counts, run-length encoded ("count*length,..."), then reset.
+  //   frame <f> <wall_ns> <triangles> <inconsistent> <P> {<items> <claims> <busy_ns> <active_ns> <cpu_ns>
+  //   <chunks_stolen> <items_stolen> <wake_ns> <termination_ns>} x P <runs>
+  // with <runs> the per-item execution counts, run-length encoded ("count*length,..."), then reset. A thread's
+  // busy time is its run of claims (first claim → the loop's end, one clock read pair per frame), as the parent's
+  // fine-grained schedulers time theirs (schedulers/worker_team.hpp, WorkerSlot::begin_run); wake and
+  // termination are its first claim's start and that end against the frame's start and end.
   std::string frame_line(int f);
   // With --reuse: the kept tessellations as after frame first − 1 (nothing kept for first = 0), so a segment
   // starting at `first` costs what it costs in frontsteal's in-process arms. Untimed; no-op without reuse.
@@ -44,7 +47,9 @@ class StaticStealFrames {
 
  private:
   struct alignas(64) Worker {
-    std::int64_t items = 0, busy_ns = 0, active_ns = 0, cpu_ns = 0, chunks_stolen = 0, items_stolen = 0;
+    std::int64_t items = 0, claims = 0, busy_ns = 0, active_ns = 0, cpu_ns = 0, chunks_stolen = 0, items_stolen = 0,
+                 wake_ns = 0, termination_ns = 0;
+    std::vector<std::int32_t> ran;  // the ids this thread ran this frame, in order (its own memory: plain stores)
   };
   void run_item(int f, long long id, int t);
   std::int64_t run_frame(int f);  // returns the wall time (ns)
@@ -54,7 +59,7 @@ class StaticStealFrames {
   ts::PathScene scene_;  // the parent's views: the same tessellate/path_scene.cpp, from the same options
   std::optional<ts::FrameWorkload> frames_;  // over scene_, once it is loaded: the parent's items and totals
   long long n_ = 0, grain_ = 1, chunks_ = 0;
-  std::vector<std::atomic<std::uint32_t>> runs_;
+  std::vector<std::uint32_t> runs_;   // per item: runs this frame, counted from the threads' logs after the region
   std::vector<std::int32_t> runner_;  // the thread that last ran item i
   std::vector<Worker> workers_;
   const ThreadPinning pinning_;

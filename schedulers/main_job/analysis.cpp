@@ -269,6 +269,60 @@ void judge_rows(const Measured& m, Analysis& a) {
   }
 }
 
+// The limit arm's rows, and every scheduler row's loss account and comparison with the limit at its P: per round
+// the row's time against W_limit / P (the limit's frame over its copies), and both arms' sampled work against
+// the serial loop's (work inflation).
+void scale_rows(const Measured& m, Analysis& a) {
+  const measure::Settings settings = analysis_settings(m.o);
+  auto inflation = [&](const measure::ArmRounds& sampled) -> std::optional<Inflation> {
+    if (sampled.size() == 0 || m.serial_sampled.size() == 0) return std::nullopt;
+    Inflation i{measure::analyze_pairs(measure::pair_rounds(sampled, m.serial_sampled), settings)};
+    if (!i.valid()) return std::nullopt;
+    return i;
+  };
+  std::vector<measure::ArmRounds> per_worker_limit, per_worker_wall;  // the limit's rounds over P, per limit row
+  for (const Cell& c : m.cells) {
+    if (c.role != ArmRole::kLimit) continue;
+    LimitRow l;
+    l.cell = &c;
+    l.path_ms = median(c.path_ms);
+    l.speedup = a.t1_ms / (l.path_ms / c.workers);
+    measure::ArmRounds scaled = c.rounds, scaled_wall = c.limit_wall;
+    for (double& t : scaled.time) t /= static_cast<double>(c.workers);
+    for (double& t : scaled_wall.time) t /= static_cast<double>(c.workers);
+    l.wall_speedup = a.t1_ms / (median(c.limit_wall_path_ms()) / c.workers);
+    l.vs_serial.c = measure::analyze_pairs(measure::pair_rounds(scaled, m.serial_rounds), settings);
+    l.inflation = inflation(c.sampled);
+    l.copy_spread = c.frames_run ? c.limit_copy_spread_sum / static_cast<double>(c.frames_run) : 0;
+    a.limits.push_back(l);
+    per_worker_limit.push_back(std::move(scaled));
+    per_worker_wall.push_back(std::move(scaled_wall));
+  }
+  for (Row& r : a.rows) {
+    const Cell& c = *r.cell;
+    Account& acc = r.account;
+    acc.terms = make_account(c.account);
+    acc.inflation = inflation(c.sampled);
+    for (std::size_t i = 0; i < a.limits.size(); ++i) {
+      const LimitRow& l = a.limits[i];
+      if (l.cell->workers != c.workers) continue;
+      ShownComparison vs;
+      vs.c = measure::analyze_pairs(measure::pair_rounds(c.rounds, per_worker_limit[i]), settings);
+      vs.reliable = r.vs_serial.reliable;
+      vs.noise_reason = r.vs_serial.noise_reason;
+      r.vs_limit = vs;
+      vs.c = measure::analyze_pairs(measure::pair_rounds(c.rounds, per_worker_wall[i]), settings);
+      r.vs_limit_wall = vs;
+      const double work = acc.terms.share(Term::kWork);
+      if (acc.inflation && l.inflation) {
+        acc.split_by_limit = true;
+        acc.work_at_limit = work * l.inflation->factor() / acc.inflation->factor();
+        acc.inflation_beyond_limit = work - acc.work_at_limit;
+      }
+    }
+  }
+}
+
 // "faster than queue-mutex (time -11.6 % [-15.0, -8.1])" and the like: one clause of the short answer.
 std::string answer_clause(const ShownComparison& s, const std::string& other, double margin) {
   const measure::LogInterval& li = s.c.chosen();
@@ -293,6 +347,38 @@ std::string answer_clause(const ShownComparison& s, const std::string& other, do
   }
   if (!s.reliable) clause = "UNRELIABLE against " + other + " (" + s.noise_reason + ")";
   return clause;
+}
+
+// The clause of policies that got the same verdict against `other`: the verdict once, with the range of their
+// estimates ("not decided against queue-mutex (time -3.3 ... -2.5 %; 329-1868 rounds would decide)").
+std::string agreed_clause(const std::vector<const ShownComparison*>& cs, const std::string& other, double margin) {
+  double lo = 1e300, hi = -1e300, need_lo = 1e300, need_hi = 0;
+  for (const ShownComparison* c : cs) {
+    lo = std::min(lo, c->c.chosen().effect_pct());
+    hi = std::max(hi, c->c.chosen().effect_pct());
+    need_lo = std::min(need_lo, c->c.rounds_needed);
+    need_hi = std::max(need_hi, c->c.rounds_needed);
+  }
+  auto pct = [](double v) { return std::string(v >= 0 ? "+" : "") + fixed(v, 1); };
+  const std::string range = "time " + pct(lo) + " ... " + pct(hi) + " %";
+  const ShownComparison& first = *cs.front();
+  if (!first.reliable) return "UNRELIABLE against " + other + " (" + first.noise_reason + ")";
+  switch (first.c.decision) {
+    case measure::Decision::kFaster: return "FASTER than " + other + " (" + range + ")";
+    case measure::Decision::kSlower: return "SLOWER than " + other + " (" + range + ")";
+    case measure::Decision::kEquivalent:
+      return "EQUIVALENT to " + other + " within +-" + fixed(100 * margin, 1) + " % (" + range + ")";
+    case measure::Decision::kInconclusive: {
+      const bool finite = std::isfinite(need_lo) && std::isfinite(need_hi);
+      return "not decided against " + other + " (" + range +
+             (finite ? "; " + std::to_string(static_cast<long>(need_lo)) + "-" +
+                           std::to_string(static_cast<long>(need_hi)) + " rounds would decide, " +
+                           std::to_string(first.c.rounds) + " were run)"
+                     : "; some sit on the margin: no number of rounds decides them)");
+    }
+    case measure::Decision::kTooFewRounds: return "not compared with " + other + " (too few rounds)";
+  }
+  return "";
 }
 
 // The rounds a comparison of the table has (every row's are alike: one per segment per pass).
@@ -322,18 +408,65 @@ void short_answer(const Measured& m, Analysis& a) {
         continue;
       if (!best || r.vs_serial.c.chosen().estimate < best->vs_serial.c.chosen().estimate) best = &r;
     }
+    // Each stealing policy against queue-mutex and the best other scheduler; when every policy gets the same
+    // verdicts, one sentence says so with the range of their estimates.
+    struct Verdicts {
+      const Row* row;
+      std::optional<ShownComparison> best;
+    };
+    std::vector<Verdicts> policies;
     for (const Row& r : a.rows) {
       if (r.cell->workers != p || r.cell->scheduler.rfind("stealing/", 0) != 0) continue;
-      std::string sentence =
-          "P = " + std::to_string(p) + (p > m.cores ? " (oversubscribed)" : "") + ": " + r.cell->scheduler + " is ";
-      sentence +=
-          r.vs_queue ? answer_clause(*r.vs_queue, "queue-mutex", o.margin) : "not compared with queue-mutex (not run)";
+      Verdicts v{&r, std::nullopt};
       if (best && best->cell->scheduler != "queue-mutex") {
         ShownComparison vs_best;
         vs_best.c = measure::analyze_pairs(measure::pair_rounds(r.cell->rounds, best->cell->rounds), settings);
         vs_best.reliable = r.vs_serial.reliable && best->vs_serial.reliable;
         vs_best.noise_reason = !r.vs_serial.reliable ? r.vs_serial.noise_reason : best->vs_serial.noise_reason;
-        sentence += ", and " + answer_clause(vs_best, "the best other scheduler, " + best->cell->scheduler, o.margin);
+        v.best = vs_best;
+      }
+      policies.push_back(v);
+    }
+    const std::string at = "P = " + std::to_string(p) + (p > m.cores ? " (oversubscribed)" : "") + ": ";
+    const std::string best_name = best ? "the best other scheduler, " + best->cell->scheduler : "";
+    auto kind = [](const std::optional<ShownComparison>& c) {
+      return !c ? std::string("-") : !c->reliable ? std::string("unreliable") : measure::to_string(c->c.decision);
+    };
+    bool agree = policies.size() > 1;
+    for (const Verdicts& v : policies) {
+      agree = agree && kind(v.row->vs_queue) == kind(policies.front().row->vs_queue) &&
+              kind(v.best) == kind(policies.front().best) && v.row->vs_queue;
+    }
+    if (agree) {
+      std::string names;
+      for (std::size_t i = 0; i < policies.size(); ++i) {
+        names += (i == 0                     ? ""
+                  : i + 1 == policies.size() ? " and "
+                                             : ", ") +
+                 policies[i].row->cell->scheduler.substr(std::string("stealing/").size());
+      }
+      std::vector<const ShownComparison*> q, b;
+      for (const Verdicts& v : policies) {
+        q.push_back(&*v.row->vs_queue);
+        if (v.best) b.push_back(&*v.best);
+      }
+      std::string sentence = at + "the " + std::to_string(policies.size()) + " stealing policies (" + names +
+                             ") agree: each is " + agreed_clause(q, "queue-mutex", o.margin);
+      if (!b.empty()) {
+        sentence += ", and " + agreed_clause(b, best_name, o.margin);
+      } else if (best) {
+        sentence += " (queue-mutex is also the fastest other scheduler here)";
+      }
+      a.answer.push_back(sentence + ".");
+      continue;
+    }
+    for (const Verdicts& v : policies) {
+      const Row& r = *v.row;
+      std::string sentence = at + r.cell->scheduler + " is ";
+      sentence +=
+          r.vs_queue ? answer_clause(*r.vs_queue, "queue-mutex", o.margin) : "not compared with queue-mutex (not run)";
+      if (v.best) {
+        sentence += ", and " + answer_clause(*v.best, best_name, o.margin);
       } else if (best) {
         sentence += " (queue-mutex is also the fastest other scheduler here)";
       }
@@ -358,6 +491,64 @@ void short_answer(const Measured& m, Analysis& a) {
       " % with 80 % power (median over the comparisons with queue-mutex at "
       "P <= " +
       std::to_string(m.cores) + ")";
+}
+
+// The stealing policy the scale sentences speak for: Fenced (the exactly-once default of the paper's handshake
+// with its StoreLoad fences) when it ran, else the first stealing policy of the run.
+const Row* reference_policy(const Analysis& a, WorkerId p) {
+  const Row* first = nullptr;
+  for (const Row& r : a.rows) {
+    if (r.cell->workers != p || r.cell->scheduler.rfind("stealing/", 0) != 0) continue;
+    if (r.cell->scheduler == "stealing/Fenced") return &r;
+    if (!first) first = &r;
+  }
+  return first;
+}
+
+// The account's losses of a row, largest first: every term but work, and the inflation beyond the limit's.
+std::vector<std::pair<double, std::string>> losses(const Row& r) {
+  std::vector<std::pair<double, std::string>> out;
+  for (std::size_t i = 0; i < kTerms; ++i) {
+    const auto t = static_cast<Term>(i);
+    if (t == Term::kWork) continue;
+    out.emplace_back(r.account.terms.share(t), describe(t));
+  }
+  if (r.account.split_by_limit) out.emplace_back(r.account.inflation_beyond_limit, "inflation beyond the limit's");
+  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  return out;
+}
+
+// Per P, one sentence: the reference policy's limit-efficiency with its interval, its three largest losses as
+// the account gives them, and against the ideal T1 / P how much the machine took (the limit's own loss) and how
+// much the scheduler (everything between the limit and the scheduler), and which dominates.
+void scale_answer(const Measured& m, Analysis& a) {
+  for (const LimitRow& l : a.limits) {
+    const WorkerId p = l.cell->workers;
+    const Row* r = reference_policy(a, p);
+    if (!r || !r->vs_limit || !r->vs_limit->c.chosen().valid) continue;
+    const double eff = r->limit_efficiency();
+    const double ideal = r->ideal_pct / 100;
+    std::ostringstream s;
+    s << "P = " << p << (p > m.cores ? " (oversubscribed)" : "") << ": " << r->cell->scheduler << " used "
+      << fixed(100 * eff, 1) << " % [" << fixed(100 * r->limit_efficiency_low(), 1) << ", "
+      << fixed(100 * r->limit_efficiency_high(), 1) << "] of the machine's limit (" << p << " serial loops at once ran "
+      << fixed(l.speedup, 2) << "x the serial loop's frames)";
+    const auto loss = losses(*r);
+    s << "; its largest losses, as shares of P x T:";
+    for (std::size_t i = 0; i < std::min<std::size_t>(3, loss.size()); ++i) {
+      s << (i ? "," : "") << " " << fixed(100 * loss[i].first, 1) << " % " << loss[i].second;
+    }
+    if (!r->account.terms.closes()) {
+      s << " (the account does not close: " << fixed(100 * r->account.terms.share(Term::kUnaccounted), 1)
+        << " % unaccounted)";
+    }
+    const double machine = eff - ideal, scheduler = 1 - eff;
+    s << ". Against the ideal T1 / " << std::min<WorkerId>(p, m.cores) << " it reached " << fixed(100 * ideal, 1)
+      << " %: the machine took " << fixed(100 * machine, 1) << " % (" << p
+      << " busy cores' own slowdown), the scheduler " << fixed(100 * scheduler, 1) << " % -- the "
+      << (std::fabs(machine) > std::fabs(scheduler) ? "machine's" : "scheduler's") << " loss dominates.";
+    a.scale_answer.push_back(s.str());
+  }
 }
 
 // The camera path, and how much a few surfaces dominate: the 16 costliest surfaces' share of a frame's
@@ -502,7 +693,9 @@ Analysis analyze(const Measured& m) {
   Analysis a;
   for (int f = 0; f < m.o.frames; ++f) a.serial_inconsistencies += m.wl.serial_inconsistencies[f];
   judge_rows(m, a);
+  scale_rows(m, a);
   short_answer(m, a);
+  scale_answer(m, a);
   cost_spreads(m, a);
   summary_lines(m, a);
   return a;

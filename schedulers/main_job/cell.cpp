@@ -2,7 +2,10 @@
 #include "schedulers/main_job/cell.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <sstream>
+
+#include "measure/cpu_speed_probe.hpp"
 
 namespace frontsteal::main_job {
 
@@ -41,6 +44,18 @@ double account_frame(Cell& c, int f, const FrameOutcome& frame, std::uint64_t se
     }
   }
   return static_cast<double>(st.wall_ns) / 1e6;
+}
+
+TimedFrame time_frame(sc::Scheduler& scheduler, sc::ItemFunctionRef item, std::uint64_t planted_steps) {
+  using Clock = std::chrono::steady_clock;
+  TimedFrame t;
+  const Clock::time_point start = Clock::now();
+  t.stats = &scheduler.run_frame(item);
+  const Clock::time_point returned = Clock::now();
+  if (planted_steps > 0) nz::probe_ns_per_million_steps(planted_steps);
+  t.frame_ns = std::chrono::duration<double, std::nano>(returned - start).count();
+  t.planted_ns = std::chrono::duration<double, std::nano>(Clock::now() - returned).count();
+  return t;
 }
 
 }  // namespace frontsteal::main_job

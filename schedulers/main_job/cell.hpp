@@ -18,6 +18,8 @@
 #include "measure/noise_monitor.hpp"
 #include "measure/paired_analysis.hpp"
 #include "schedulers/llvm_openmp_child.hpp"
+#include "schedulers/main_job/limit_arm.hpp"
+#include "schedulers/main_job/loss_account.hpp"
 #include "schedulers/scheduler.hpp"
 
 namespace frontsteal::main_job {
@@ -25,9 +27,11 @@ namespace frontsteal::main_job {
 namespace sc = frontsteal::sched;
 namespace nz = frontsteal::noise;
 
-// What an arm of the experiment is: a scheduler the user asked about, or a calibration arm (a copy of the
-// --calibrate-base scheduler under a second name, with or without planted work) that tests the method itself.
-enum class ArmRole { kScheduler, kTwin, kPlanted };
+// What an arm of the experiment is: a scheduler the user asked about, a calibration arm (a copy of the
+// --calibrate-base scheduler under a second name, with or without planted work) that tests the method itself, or
+// the limit arm of one P (limit_arm.hpp: P serial loops at once, the machine's own throughput limit).
+enum class ArmRole { kScheduler, kTwin, kPlanted, kLimit };
+inline constexpr const char* kLimitName = "limit";
 
 // One scheduler at one P (or one calibration arm): what the rounds gathered.
 struct Cell {
@@ -39,15 +43,31 @@ struct Cell {
   WorkerId workers = 0;
   measure::HeapOffset heap_offset;  // held while `instance` lives: a random shift of its memory
   std::unique_ptr<sc::Scheduler> instance;
-  int instance_id = 0;                            // counts the instances built (recorded with every round)
-  std::unique_ptr<sc::LlvmOpenMpChild> child;     // openmp-static-steal: the child process instead of instance
-  std::string unavailable;                        // why this cell could not run ("" when it ran)
-  double setup_ms = 0;                            // construction (annealing included)
-  std::vector<double> path_ms;                    // per pass (the sum of its rounds)
-  std::vector<std::vector<double>> frame_ms;      // [pass][frame], the harness's clock
-  measure::ArmRounds rounds;                      // per round: the segment's time (ms, the harness's clock),
-                                                  // the CPU speed probe just before the arm ran, the segment
-  std::vector<double> round_planted_ms;           // [round]: of rounds.time, the planted work's time
+  int instance_id = 0;                         // counts the instances built (recorded with every round)
+  std::unique_ptr<sc::LlvmOpenMpChild> child;  // openmp-static-steal: the child process instead of instance
+  std::unique_ptr<LimitArm> limit;             // the limit arm: its copies instead of instance
+  bool sample_items = true;                    // the harness samples its items (SchedulerInfo::account)
+  std::string unavailable;                     // why this cell could not run ("" when it ran)
+  double setup_ms = 0;                         // construction (annealing included)
+  std::vector<double> path_ms;                 // per pass (the sum of its rounds)
+  std::vector<std::vector<double>> frame_ms;   // [pass][frame], the harness's clock
+  measure::ArmRounds rounds;                   // per round: the segment's time (ms, the harness's clock),
+                                               // the CPU speed probe just before the arm ran, the segment
+  std::vector<double> round_planted_ms;        // [round]: of rounds.time, the planted work's time
+  measure::ArmRounds sampled;                  // per round as `rounds`: the sampled surfaces' work (ms; the
+                                               // limit arm: per copy), against the serial loop's: inflation
+  AccountSums account;                         // the loss account's sums (loss_account.hpp)
+  double limit_copy_spread_sum = 0;            // the limit arm: Σ over frames of its slowest copy / mean copy
+  measure::ArmRounds limit_wall;               // the limit arm, per round: release → last copy done (ms)
+  // The limit arm's wall time per pass (the sum of its rounds in each pass), as path_ms is for its limit.
+  std::vector<double> limit_wall_path_ms() const {
+    std::vector<double> out(path_ms.size(), 0.0);
+    if (path_ms.empty() || limit_wall.size() == 0) return out;
+    const std::size_t per_pass = limit_wall.size() / path_ms.size();
+    for (std::size_t k = 0; k < limit_wall.size(); ++k)
+      out[std::min(k / std::max<std::size_t>(per_pass, 1), out.size() - 1)] += limit_wall.time[k];
+    return out;
+  }
   double clock_gap_max_ms = 0;                    // largest |harness - planted - scheduler's wall_ns| per frame
   std::uint64_t clock_gap_frames = 0;             // frames whose gap exceeds kClockGapBoundMs + 5 %
   WorkerFrameStats totals;                        // summed over every frame of every pass
@@ -80,5 +100,16 @@ struct FrameOutcome {
 // Adds frame `f` to the cell's totals and audits it against the serial loop's triangle count; the first
 // problem found is kept with its frame. Returns the frame's wall time in ms.
 double account_frame(Cell& c, int f, const FrameOutcome& frame, std::uint64_t serial_triangles);
+
+// One frame of an in-process scheduler as the harness times it: by this thread's clock from before run_frame to
+// after it returned (never the scheduler's own FrameStats::wall_ns, which misses whatever the scheduler does
+// outside its window), then `planted_steps` of the CPU speed probe's loop spun on this thread (a calibration arm's
+// planted work, timed apart).
+struct TimedFrame {
+  const FrameStats* stats = nullptr;
+  double frame_ns = 0;    // run_frame, by the harness's clock
+  double planted_ns = 0;  // the planted work after it
+};
+TimedFrame time_frame(sc::Scheduler& scheduler, sc::ItemFunctionRef item, std::uint64_t planted_steps);
 
 }  // namespace frontsteal::main_job

@@ -26,6 +26,15 @@ bool find_rounds(const Json& doc, const std::string& arm, ms::ArmRounds& out) {
   const Json* rounds = nullptr;
   if (name == "serial") {
     rounds = &doc.at("serial").at("rounds");
+  } else if (name == "limit") {
+    // The limit arm's rounds hold P x L per frame: over P they are its throughput limit per frame.
+    for (const Json& row : doc.value("limits", Json::array())) {
+      if (row.at("workers").get<unsigned>() != p) continue;
+      out = frontsteal::main_job::rounds_from_json(row.at("rounds"));
+      for (double& t : out.time) t /= p;
+      return true;
+    }
+    return false;
   } else {
     for (const Json& row : doc.at("results")) {
       if (row.at("scheduler") == name && row.at("workers").get<unsigned>() == p) rounds = &row.at("rounds");
@@ -41,10 +50,11 @@ bool find_rounds(const Json& doc, const std::string& arm, ms::ArmRounds& out) {
 int main(int argc, char** argv) {
   frontsteal::report::CommandLine cli(
       "frontsteal-compare",
-      "Compares arms of a frontsteal.json (schema 3) round by round with the main job's analysis: per pair, the "
+      "Compares arms of a frontsteal.json (schema 3 or 4) round by round with the main job's analysis: per pair, the "
       "ratio of the candidate's time to the reference's (Huber estimate of the per-round log-ratio, segments as "
       "blocks, adjusted for the CPU speed probe), its 95 % interval and the verdict against the margin.",
-      "Arms are named \"SCHEDULER P=K\" as in the table, or \"serial\". Exit status: 0; 1 when the file or an arm "
+      "Arms are named \"SCHEDULER P=K\" as in the table, \"serial\", or \"limit P=K\" (the limit arm's throughput "
+      "limit per frame, L = 1 / sum of its copies' rates). Exit status: 0; 1 when the file or an arm "
       "is missing; 2 for bad usage.");
   std::string file;
   std::vector<std::string> pairs;

@@ -14,6 +14,7 @@
 // (report.hpp: table, markdown, CSV, JSON and gnuplot through reporting/). This file only joins them,
 // after handing any other subcommand to its program (subcommands.hpp).
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,7 +46,12 @@ int main(int argc, char** argv) {
   mj::PreparedScene scene = mj::prepare_scene(o, cores);
   mj::FrameTessellator tess(scene.wl, *std::max_element(o.threads.begin(), o.threads.end()));
   mj::Progress progress(o.quiet, mj::progress_steps(o));
-  const mj::WarmUp warm = mj::warm_up(o, scene.wl, tess);
+  // The limit arm's copies are made here, before the schedulers, and grown in the warm-up pass beside the
+  // scene's buffers (limit_arm.hpp: where their memory lies).
+  std::optional<mj::LimitCopies> limit_copies;
+  if (o.limit) limit_copies.emplace(scene.wl, *std::max_element(o.threads.begin(), o.threads.end()), o.reuse);
+  mj::LimitCopies* copies = limit_copies ? &*limit_copies : nullptr;
+  const mj::WarmUp warm = mj::warm_up(o, scene.wl, tess, copies);
   const bool auto_repeats = o.repeats == 0;
   std::string repeats_note = auto_repeats ? "auto" : "set by --repeats";
   progress.set_total(mj::progress_steps(o));
@@ -58,7 +64,7 @@ int main(int argc, char** argv) {
 
   // The schedulers, the co-runner, the rounds; the children and the co-runner are reaped by `run` on every way
   // out of main.
-  mj::Measurement run(o, scene.wl, tess, warm);
+  mj::Measurement run(o, scene.wl, tess, warm, copies);
   if (!run.start_cells(scene.hints) || !run.start_interference()) return 1;
   if (!run.run_rounds(progress, auto_repeats, repeats_note)) return 1;
   run.finish();
@@ -75,6 +81,7 @@ int main(int argc, char** argv) {
                               run.serial_probe(),
                               run.serial_pass_usage(),
                               run.serial_rounds(),
+                              run.serial_sampled(),
                               run.cells(),
                               run.not_available(),
                               at_start,

@@ -13,9 +13,10 @@ namespace {
 
 using report::Json;
 
-// frontsteal.json's schema (docs/results-schema.md). 3: rounds and margin verdicts (answer, design, per-round
-// data, each comparison's raw and adjusted interval); 2: the common header of reporting/.
-constexpr int kSchemaVersion = 3;
+// frontsteal.json's schema (docs/results-schema.md). 4: the limit arm and the loss account; 3: rounds and margin
+// verdicts (answer, design, per-round data, each comparison's raw and adjusted interval); 2: the common header of
+// reporting/.
+constexpr int kSchemaVersion = 4;
 
 Json usage_json(const nz::Usage& u, const nz::Thresholds& t) {
   return {{"wall_s", u.wall_s},
@@ -35,6 +36,38 @@ Json spread_json(const sc::CostSpread& c) {
           {"worst_frame", c.worst_frame},
           {"median", number(c.median)},
           {"per_frame", per_frame}};
+}
+
+Json inflation_json(const Inflation& i) {
+  const measure::LogInterval& li = i.c.chosen();
+  return {{"factor", li.ratio()}, {"ci95_low", li.ratio_low()}, {"ci95_high", li.ratio_high()}, {"rounds", i.c.rounds}};
+}
+
+// The loss account of one row: every term's share of P x T and its ns, the closure, the sampled timings it used,
+// the work's inflation against the serial loop and its split by the limit's.
+Json account_json(const Account& acc, const AccountSums& sums) {
+  Json shares = Json::object(), ns = Json::object();
+  for (std::size_t i = 0; i < kTerms; ++i) {
+    const auto t = static_cast<Term>(i);
+    shares[name(t)] = acc.terms.share(t);
+    ns[name(t)] = acc.terms.ns[i];
+  }
+  return {{"shares", shares},
+          {"ns", ns},
+          {"available_ns", acc.terms.available_ns},
+          {"closes", acc.terms.closes()},
+          {"closure_bound", kClosureBound},
+          {"frames", sums.frames},
+          {"frames_not_closing", sums.frames_open},
+          {"worst_frame_unaccounted", sums.worst_frame_open},
+          {"phases_timed", acc.terms.phases_timed},
+          {"checks_per_item_ns", acc.terms.checks_per_item_ns},
+          {"claim_per_item_ns", acc.terms.claim_per_item_ns},
+          {"sampled_items", acc.terms.samples},
+          {"sampled_gaps", acc.terms.gaps},
+          {"inflation", acc.inflation ? inflation_json(*acc.inflation) : Json(nullptr)},
+          {"work_at_limit", acc.split_by_limit ? Json(acc.work_at_limit) : Json(nullptr)},
+          {"inflation_beyond_limit", acc.split_by_limit ? Json(acc.inflation_beyond_limit) : Json(nullptr)}};
 }
 
 }  // namespace
@@ -136,9 +169,15 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
     Json per_worker = Json::array();
     for (const WorkerFrameStats& ws : c.per_worker) {
       per_worker.push_back({{"items", ws.items_processed},
+                            {"claims", ws.claims},
                             {"busy_ms", ws.busy_ns / 1e6},
                             {"cpu_ms", ws.cpu_ns / 1e6},
-                            {"active_ms", ws.active_ns / 1e6}});
+                            {"active_ms", ws.active_ns / 1e6},
+                            {"wake_ms", ws.wake_ns / 1e6},
+                            {"search_ms", ws.search_ns / 1e6},
+                            {"steal_ms", ws.steal_ns / 1e6},
+                            {"transient_wait_ms", ws.transient_wait_ns / 1e6},
+                            {"termination_ms", ws.termination_ns / 1e6}});
     }
     row["per_worker"] = per_worker;
     row["path_ms_per_repeat"] = c.path_ms;
@@ -149,9 +188,36 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
                                         {"frames_beyond_bound", c.clock_gap_frames},
                                         {"bound", "1 ms + 5 % of the scheduler's own frame time"}};
     row["frame_ms_median"] = frame_medians(c.frame_ms, o.frames);
+    row["sampled_rounds"] = rounds_json(c.sampled);
+    row["vs_limit"] = r.vs_limit ? r.vs_limit->json() : Json(nullptr);
+    row["vs_limit_wall"] = r.vs_limit_wall ? r.vs_limit_wall->json() : Json(nullptr);
+    row["limit_efficiency"] = r.vs_limit && r.vs_limit->c.chosen().valid
+                                  ? Json{{"value", r.limit_efficiency()},
+                                         {"ci95_low", r.limit_efficiency_low()},
+                                         {"ci95_high", r.limit_efficiency_high()}}
+                                  : Json(nullptr);
+    row["account"] = account_json(r.account, c.account);
     results.push_back(std::move(row));
   }
   js["results"] = results;
+  Json limits = Json::array();
+  for (const LimitRow& l : a.limits) {
+    limits.push_back({{"workers", l.cell->workers},
+                      {"path_ms", l.path_ms},
+                      {"speedup", l.speedup},
+                      {"wall_speedup", l.wall_speedup},
+                      {"wall_rounds", rounds_json(l.cell->limit_wall)},
+                      {"vs_serial", l.vs_serial.json()},
+                      {"inflation", l.inflation ? inflation_json(*l.inflation) : Json(nullptr)},
+                      {"copy_spread", l.copy_spread},
+                      {"audit_failures", l.cell->triangle_mismatches + l.cell->tessellation_inconsistencies},
+                      {"path_ms_per_repeat", l.cell->path_ms},
+                      {"rounds", rounds_json(l.cell->rounds)},
+                      {"sampled_rounds", rounds_json(l.cell->sampled)},
+                      {"frame_ms_median", frame_medians(l.cell->frame_ms, o.frames)}});
+  }
+  js["limits"] = limits;
+  js["scale_answer"] = a.scale_answer;
   Json not_available = Json::array();
   for (const Cell& c : m.not_available) {
     not_available.push_back({{"scheduler", c.scheduler}, {"workers", c.workers}, {"reason", c.unavailable}});

@@ -89,10 +89,11 @@ namespace {
 // --list: every scheduler, with the ones the main job does not run marked.
 [[noreturn]] void print_list() {
   for (const auto& s : sc::scheduler_registry()) {
-    std::cout << std::left << std::setw(22) << s.name << s.summary
-              << (s.contract == fs::Contract::kAtLeastOnce ? "  [at-least-once: not run on tessellation]" : "") << '\n';
+    std::cout << std::left << std::setw(34) << s.name << s.summary
+              << (s.contract == fs::Contract::kAtLeastOnce ? "  [at-least-once: not run on tessellation]" : "")
+              << (s.variant ? "  [variant: only when named in --schedulers]" : "") << '\n';
   }
-  std::cout << std::left << std::setw(22) << sc::kLlvmOpenMpName << sc::kLlvmOpenMpSummary
+  std::cout << std::left << std::setw(34) << sc::kLlvmOpenMpName << sc::kLlvmOpenMpSummary
             << (sc::llvm_openmp_unavailable_reason().empty()
                     ? ""
                     : "  [not available: " + sc::llvm_openmp_unavailable_reason() + "]")
@@ -110,7 +111,7 @@ std::vector<std::string> chosen_schedulers(const std::vector<std::string>& asked
   std::vector<std::string> wanted;
   if (asked.empty() || (asked.size() == 1 && asked[0] == "all")) {
     for (const auto& s : sc::scheduler_registry()) {
-      if (s.contract == fs::Contract::kExactlyOnce) wanted.push_back(s.name);
+      if (s.contract == fs::Contract::kExactlyOnce && !s.variant) wanted.push_back(s.name);
     }
     wanted.emplace_back(sc::kLlvmOpenMpName);  // a child process (llvm_openmp_child.hpp); "not available" if not built
     return wanted;
@@ -219,6 +220,11 @@ Options parse_options(int argc, char** argv) {
            "on these VMs the two vCPUs run at different speeds, and unpinned arms land on either, "
            "which widened the paired intervals 1.6-fold here)");
   cli.flag("--no-pin", no_pin, "leave every thread where the OS puts it");
+  bool no_limit = false;
+  cli.flag("--no-limit", no_limit,
+           "leave out the limit arm: at every P, P copies of the serial loop running at once, each over the whole "
+           "frame into buffers of its own (the machine's own throughput limit with P busy cores; every scheduler's "
+           "limit-efficiency (W_limit / P) / T_P is measured against it, paired per round)");
   cli.flag("--reuse", o.reuse,
            "frame-to-frame reuse, as the paper's renderer does: a surface whose steps and trim polylines did not "
            "change since the frame before keeps its triangles (identical to recomputing them, audited when "
@@ -288,6 +294,7 @@ Options parse_options(int argc, char** argv) {
   std::tie(o.width, o.height) = report::parse_size(size);
   o.plot = !no_plot;
   if (!defect.empty()) o.planted_defect = *ts::planted_defect_named(defect);
+  o.limit = !no_limit;
   o.threads.assign(threads.begin(), threads.end());
   if (o.threads.empty()) {
     for (unsigned p = 1; p <= hardware_cores(); ++p) o.threads.push_back(p);

@@ -46,6 +46,7 @@ struct Options {
   std::string calibrate_base = "queue-mutex";
   bool pin = true;
   bool reuse = false;  // frame-to-frame reuse of unchanged surfaces (tessellate/surface_reuse.hpp)
+  bool limit = true;   // the limit arm at every P (limit_arm.hpp)
   nz::Thresholds noise;
   double tolerance = 1.0;
   ItemId grain = 0;

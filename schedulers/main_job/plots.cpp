@@ -6,6 +6,7 @@
 #include <string>
 
 #include "reporting/table.hpp"
+#include "schedulers/main_job/loss_account.hpp"
 
 namespace frontsteal::main_job {
 
@@ -88,6 +89,25 @@ void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir&
     ++blocks;
   }
   dir.write("frontsteal-frames.dat", frames.str());
+  // Where the time went beyond the items' work: per P and scheduler the account's loss terms stacked (shares of
+  // P x T; a term below 0, as unaccounted can be, is drawn as 0), and 1 - limit-efficiency with its interval.
+  std::ostringstream account;
+  account << "label";
+  for (std::size_t i = 1; i < kTerms; ++i) account << ' ' << name(static_cast<Term>(i));
+  account << " limit_loss limit_loss_low limit_loss_high\n";
+  for (const Row& r : a.rows) {
+    account << "\"P=" << r.cell->workers << " " << gnuplot_text(r.cell->scheduler) << "\"";
+    for (std::size_t i = 1; i < kTerms; ++i) {
+      account << ' ' << std::max(0.0, 100 * r.account.terms.share(static_cast<Term>(i)));
+    }
+    if (r.vs_limit && r.vs_limit->c.chosen().valid) {
+      account << ' ' << 100 * (1 - r.limit_efficiency()) << ' ' << 100 * (1 - r.limit_efficiency_high()) << ' '
+              << 100 * (1 - r.limit_efficiency_low()) << '\n';
+    } else {
+      account << " NaN NaN NaN\n";
+    }
+  }
+  dir.write("frontsteal-account.dat", account.str());
   const WorkerId max_p = *std::max_element(o.threads.begin(), o.threads.end());
   const std::size_t rounds = a.rows.empty() ? 0 : a.rows.front().vs_serial.c.rounds;
   std::ostringstream gp;
@@ -131,6 +151,16 @@ void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir&
      << "plot for [i=0:" << blocks - 1
      << "] 'frontsteal-frames.dat' index i using 1:2 with linespoints "
         "lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1)\n";
+  gp << "set output 'frontsteal-account.png'\n"
+     << "set title \"Where the time went beyond the items' work (measured): the loss account's terms, % of P x T; "
+        "black: 1 - limit-efficiency (the limit: P serial loops at once), 95 % interval\\n"
+     << gnuplot_text(a.machine) << "; " << rounds << " rounds per comparison\"\n"
+     << "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.85 border -1\n"
+     << "set boxwidth 0.75\nset key outside right top\nunset xlabel\nset ylabel '% of P x T'\n"
+     << "set xtics rotate by -60 font 'sans,8' nomirror\nset autoscale x\nset yrange [*:*]\n"
+     << "plot for [i=2:" << kTerms << "] 'frontsteal-account.dat' using i:xtic(1) title columnheader(i), \\\n"
+     << "  '' using 0:" << kTerms + 1 << ":" << kTerms + 2 << ":" << kTerms + 3
+     << " with yerrorbars lc 'black' pt 7 ps 0.8 title '1 - limit-efficiency'\n";
   dir.write_gnuplot("frontsteal.gp", {1200, 760}, gp.str());
   if (o.plot) dir.plot("frontsteal.gp");
 }

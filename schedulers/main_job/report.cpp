@@ -26,6 +26,11 @@ std::string answer_text(const Analysis& a) {
   s << "ANSWER (measured on " << a.machine << "; " << a.design_line << "):\n";
   for (const std::string& line : a.answer) s << "  " << line << "\n";
   if (a.answer.empty()) s << "  no stealing scheduler was run (see --schedulers)\n";
+  if (!a.scale_answer.empty()) {
+    s << "Scale, against the machine's own limit (the limit arm: P serial loops at once, each over the whole frame; "
+         "limit-efficiency = (W_limit / P) / T_P, paired per round):\n";
+    for (const std::string& line : a.scale_answer) s << "  " << line << "\n";
+  }
   return s.str();
 }
 
@@ -46,6 +51,16 @@ std::string terminal_heading(const Measured& m, const Analysis& a) {
     << a.interference_line << "\n"
     << a.spread_summary << "\n\n";
   return s.str();
+}
+
+// Where the time went: the account table with the lines that say how to read it.
+std::string account_text(const Analysis& a) {
+  if (a.rows.empty()) return {};
+  return "where the time went (measured; % of P x T, T the harness's frame time, summed over every frame: "
+         "loss_account.hpp; work at the limit's speed + inflation beyond the limit's = the items' work, split by "
+         "the sampled surfaces' inflation against the serial loop in the same rounds, the limit arm's against "
+         "the scheduler's; off_cpu taken out of the other terms; closes: |unaccounted| <= " +
+         fixed(100 * kClosureBound, 0) + " %):\n" + account_table(a).markdown();
 }
 
 // The calibration arms' verdicts (--calibrate): the method tested on this machine, in this run.
@@ -92,6 +107,8 @@ std::string markdown_report(const Measured& m, const Analysis& a, const std::str
      << "**" << a.path_line << "; " << a.interference_line << ".**\n\n```\n"
      << a.spread_summary << "\n```\n\n"
      << table << '\n'
+     << "## Where the time went\n\n"
+     << account_text(a) << '\n'
      << a.child_note << (a.child_note.empty() ? "" : "\n") << a.tessellation_audit << ".\n\n"
      << a.remade << ".\n\n"
      << a.spread_line << ".\n\n"
@@ -125,6 +142,7 @@ int write_results(const Measured& m, double elapsed_s) {
   const Analysis a = analyze(m);
   const std::string table = shown_table(m, a).markdown();
   std::cout << terminal_heading(m, a) << table << '\n'
+            << account_text(a) << '\n'
             << a.child_note << a.tessellation_audit << '\n'
             << a.remade << '\n'
             << a.spread_line << '\n'
@@ -144,7 +162,9 @@ int write_results(const Measured& m, double elapsed_s) {
     }
     write_plots(m, a, dir);
     std::cout << "\nwrote " << dir.file("frontsteal.json").string() << ", .csv, .md"
-              << (o.plot ? ", frontsteal-speedup.png, frontsteal-verdicts.png, frontsteal-frames.png" : "")
+              << (o.plot ? ", frontsteal-speedup.png, frontsteal-verdicts.png, frontsteal-frames.png, "
+                           "frontsteal-account.png"
+                         : "")
               << (a.calibration.empty() ? "" : ", frontsteal-calibration.{md,json}") << " (" << fixed(elapsed_s, 0)
               << " s)\n";
   } catch (const std::exception& e) {

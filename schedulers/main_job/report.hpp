@@ -32,6 +32,7 @@ struct Measured {
   const std::vector<double>& serial_probe;  // the CPU speed probe around each serial pass, ns per 10^6 steps
   const std::vector<nz::PassUsage>& serial_pass_usage;  // what each serial pass's thread did (pass_usage.hpp)
   const measure::ArmRounds& serial_rounds;              // per round: the serial loop's segment time, probe, segment
+  const measure::ArmRounds& serial_sampled;             // per round: the serial loop's work on the sampled surfaces
   const std::vector<Cell>& cells;
   const std::vector<Cell>& not_available;
   nz::ProcSample at_start, measure_start, measure_end, at_end;

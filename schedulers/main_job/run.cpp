@@ -74,8 +74,14 @@ std::size_t progress_steps(const Options& o) {
   return 1 + static_cast<std::size_t>(std::max(o.repeats, 1)) * static_cast<std::size_t>(segments(o));
 }
 
-Measurement::Measurement(Options& o, Workload& wl, FrameTessellator& tess, const WarmUp& warm)
-    : o_(o), wl_(wl), tess_(tess), runs_(static_cast<ItemId>(wl.model.surfaces.size())) {
+Measurement::Measurement(Options& o, Workload& wl, FrameTessellator& tess, const WarmUp& warm, LimitCopies* limit)
+    : o_(o),
+      wl_(wl),
+      tess_(tess),
+      limit_copies_(limit),
+      runs_(static_cast<ItemId>(wl.model.surfaces.size()), *std::max_element(o.threads.begin(), o.threads.end())),
+      sampler_(static_cast<std::uint32_t>(wl.model.surfaces.size()),
+               *std::max_element(o.threads.begin(), o.threads.end()), o.seed) {
   for (WorkerId p : o.threads) {
     for (const auto& name : o.schedulers) {
       Cell c;
@@ -85,6 +91,24 @@ Measurement::Measurement(Options& o, Workload& wl, FrameTessellator& tess, const
     }
   }
   if (o.calibrate) add_calibration_arms(warm);
+  if (limit_copies_) add_limit_arms();
+}
+
+// The limit arm at every P of the run (one per distinct P, like a scheduler's cell).
+void Measurement::add_limit_arms() {
+  std::vector<WorkerId> ps;
+  for (const Cell& c : cells_) {
+    if (std::find(ps.begin(), ps.end(), c.workers) == ps.end()) ps.push_back(c.workers);
+  }
+  std::sort(ps.begin(), ps.end());
+  for (WorkerId p : ps) {
+    Cell c;
+    c.scheduler = kLimitName;
+    c.label = "limit (" + std::to_string(p) + " serial loops at once)";
+    c.role = ArmRole::kLimit;
+    c.workers = p;
+    cells_.push_back(std::move(c));
+  }
 }
 
 // The calibration arms, at P = 1 and P = cores: the base scheduler under a second name (the A/A twin) and with
@@ -161,6 +185,7 @@ std::unique_ptr<sc::Scheduler> Measurement::make_instance(Cell& c, std::uint64_t
   c.instance.reset();
   c.heap_offset.redraw(o_.seed, draw);
   const sc::SchedulerInfo* info = sc::find_scheduler(c.scheduler);
+  c.sample_items = info->account;
   sc::SchedulerConfig config{.workers = c.workers,
                              .items = static_cast<ItemId>(wl_.model.surfaces.size()),
                              .grain = o_.grain,
@@ -175,6 +200,16 @@ bool Measurement::start_cells(const sc::WorkloadHints& hints) {
     ++draw;
     if (c.scheduler == sc::kLlvmOpenMpName) {
       start_child(c);
+      continue;
+    }
+    if (c.role == ArmRole::kLimit) {
+      const auto t0 = std::chrono::steady_clock::now();
+      c.limit = std::make_unique<LimitArm>(
+          *limit_copies_, c.workers, [this](WorkerId w) { pin_as(w); }, sampler_);
+      c.setup_ms = ms_since(t0);
+      c.limit->prime(0);
+      (void)c.limit->run_frame(0);  // untimed, as every arm's first frame (the copies grew in the warm-up pass)
+      (void)sampler_.take_frame();
       continue;
     }
     const auto t0 = std::chrono::steady_clock::now();
@@ -195,7 +230,7 @@ bool Measurement::start_cells(const sc::WorkloadHints& hints) {
   for (Cell& c : cells_) {
     if (!c.unavailable.empty()) not_available_.push_back(std::move(c));
   }
-  std::erase_if(cells_, [](const Cell& c) { return !c.unavailable.empty() || (!c.instance && !c.child); });
+  std::erase_if(cells_, [](const Cell& c) { return !c.unavailable.empty() || (!c.instance && !c.child && !c.limit); });
   return true;
 }
 
@@ -211,6 +246,7 @@ int Measurement::instance_of(const Cell& c) const { return o_.instance_frames > 
 void Measurement::renew_instances(int pass, int first_frame) {
   const int warm_frame = std::max(first_frame - 1, 0);
   for (Cell& c : cells_) {
+    if (c.limit) continue;  // like the serial loop: one instance for the run (it carries no schedule)
     if (c.child) {
       if (first_frame != 0) continue;
       const std::uint64_t ticks = c.child->cpu_ticks();
@@ -267,7 +303,7 @@ void Measurement::begin_pass() {
   for (Cell& c : cells_) {
     c.frame_ms.emplace_back(static_cast<std::size_t>(o_.frames), 0.0);
     c.path_ms.push_back(0);
-    if (!c.child) c.busy_ratio.emplace_back(static_cast<std::size_t>(o_.frames), 0.0);
+    if (!c.child && !c.limit) c.busy_ratio.emplace_back(static_cast<std::size_t>(o_.frames), 0.0);
   }
 }
 
@@ -280,11 +316,15 @@ void Measurement::run_serial_segment(std::size_t round, int segment, double prob
   co_runner_.pause();  // T1 is the undisturbed reference (no-op without --interference)
   const nz::ProcSample before = sample();
   const nz::PassMeter meter;
-  double total = 0;
+  double total = 0, sampled_ms = 0;
   for (int f = first; f < last; ++f) {
     const auto t0 = std::chrono::steady_clock::now();
-    for (ItemId id = 0; id < n; ++id) tess_.run(f, id, 0);
+    for (ItemId id = 0; id < n; ++id) {
+      sampler_.run(
+          id, 0, [] {}, [&] { tess_.run(f, id, 0); });
+    }
     const double ms = ms_since(t0);
+    sampled_ms += sampler_.take_frame().work_ns / 1e6;
     // The serial loop runs once per P in each segment: the pass's figures are the mean of those runs.
     serial_frame_ms_.back()[static_cast<std::size_t>(f)] += ms / static_cast<double>(ps_.size());
     total += ms;
@@ -295,6 +335,7 @@ void Measurement::run_serial_segment(std::size_t round, int segment, double prob
   unpin_caller();
   serial_path_ms_.back() += total / static_cast<double>(ps_.size());
   serial_rounds_.add(round, total, probe, segment);
+  serial_sampled_.add(round, sampled_ms, probe, segment);
   pass_probe_min_ = pass_probe_min_ > 0 ? std::min(pass_probe_min_, probe) : probe;
 }
 
@@ -302,27 +343,41 @@ void Measurement::run_serial_segment(std::size_t round, int segment, double prob
 // this thread's clock around run_frame and the planted work, the audits after the clock stops.
 void Measurement::run_cell_segment(Cell& c, std::size_t round, int segment, double probe) {
   if (c.child) return run_child_segment(c, round, segment, probe);
+  if (c.limit) return run_limit_segment(c, round, segment, probe);
   const auto [first, last] = segment_frames(o_, segment);
   tess_.prime(first);  // --reuse: the same kept state for every arm of the round (untimed)
-  double total = 0, planted_total = 0;
+  double total = 0, planted_total = 0, sampled_ms = 0;
   const nz::ProcSample before = sample();
   for (int f = first; f < last; ++f) {
-    auto item = [&](ItemId id, WorkerId w) {
+    // The harness's checks (pinning, the exactly-once count) and the work, timed on the sampled surfaces (not at
+    // all for the variant that measures what the account costs).
+    auto sampled = [&](ItemId id, WorkerId w) {
+      sampler_.run(
+          id, w,
+          [&] {
+            pin_as(w);
+            runs_.record(id, w);
+          },
+          [&] { tess_.run(f, id, w); });
+    };
+    auto plain = [&](ItemId id, WorkerId w) {
       pin_as(w);
-      runs_.record(id);
+      runs_.record(id, w);
       tess_.run(f, id, w);
     };
-    const auto t0 = std::chrono::steady_clock::now();
-    const FrameStats& st = c.instance->run_frame(item);
-    const auto t_frame = std::chrono::steady_clock::now();
-    if (!c.planted_steps.empty()) nz::probe_ns_per_million_steps(c.planted_steps[static_cast<std::size_t>(f)]);
-    const auto t1 = std::chrono::steady_clock::now();
-    const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
-    const double planted_ms = std::chrono::duration<double, std::milli>(t1 - t_frame).count();
+    const std::uint64_t steps = c.planted_steps.empty() ? 0 : c.planted_steps[static_cast<std::size_t>(f)];
+    const TimedFrame timed =
+        c.sample_items ? time_frame(*c.instance, sampled, steps) : time_frame(*c.instance, plain, steps);
+    const FrameStats& st = *timed.stats;
+    const double planted_ms = timed.planted_ns / 1e6;
+    const double ms = timed.frame_ns / 1e6 + planted_ms;
     const double own_ms = static_cast<double>(st.wall_ns) / 1e6;
-    const double gap = std::fabs(ms - planted_ms - own_ms);
+    const double gap = std::fabs(timed.frame_ns / 1e6 - own_ms);
     c.clock_gap_max_ms = std::max(c.clock_gap_max_ms, gap);
     if (gap > kClockGapBoundMs + 0.05 * own_ms) ++c.clock_gap_frames;
+    measure::ItemSamples samples = sampler_.take_frame();
+    sampled_ms += samples.work_ns / 1e6;
+    c.account.add_frame(st, timed.frame_ns, std::move(samples));
     std::vector<double> busy;
     for (const auto& w : st.workers) busy.push_back(static_cast<double>(w.busy_ns));
     c.busy_ratio.back()[static_cast<std::size_t>(f)] = sc::load_ratio(busy);
@@ -338,7 +393,56 @@ void Measurement::run_cell_segment(Cell& c, std::size_t round, int segment, doub
   unpin_caller();
   c.path_ms.back() += total;
   c.rounds.add(round, total, probe, segment, instance_of(c));
+  c.sampled.add(round, sampled_ms, probe, segment, instance_of(c));
   c.round_planted_ms.push_back(planted_total);
+}
+
+// The limit arm on one segment: P serial loops at once. Its rounds hold P x L per frame (L the throughput limit,
+// limit_arm.hpp), so that rounds / P is comparable with a scheduler's time; `limit_wall` holds the arm's wall time
+// from the release to the last copy's end. Every copy is audited against the serial loop like a scheduler's frame.
+void Measurement::run_limit_segment(Cell& c, std::size_t round, int segment, double probe) {
+  const auto [first, last] = segment_frames(o_, segment);
+  c.limit->prime(first);  // --reuse: every copy from the same kept state (untimed)
+  double total = 0, wall_total = 0, sampled_ms = 0;
+  const nz::ProcSample before = sample();
+  for (int f = first; f < last; ++f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const LimitFrame& lf = c.limit->run_frame(f);
+    const double wall_ms = ms_since(t0);
+    const double ms = static_cast<double>(c.workers) * lf.throughput_ns() / 1e6;
+    sampled_ms += sampler_.take_frame().work_ns / 1e6 / static_cast<double>(c.workers);
+    const auto copies = static_cast<double>(lf.copy_ns.size());
+    double mean_ns = 0, slowest_ns = 0;
+    for (std::size_t w = 0; w < lf.copy_ns.size(); ++w) {
+      mean_ns += static_cast<double>(lf.copy_ns[w]) / copies;
+      slowest_ns = std::max(slowest_ns, static_cast<double>(lf.copy_ns[w]));
+      const std::string at = "frame " + std::to_string(f) + ", copy " + std::to_string(w) + ": ";
+      if (lf.inconsistent[w] > 0) {
+        c.tessellation_inconsistencies += lf.inconsistent[w];
+        if (c.first_problem.empty())
+          c.first_problem = at + std::to_string(lf.inconsistent[w]) + " surfaces fail the tessellation audit";
+      }
+      if (lf.triangles[w] != wl_.serial_triangles[static_cast<std::size_t>(f)]) {
+        ++c.triangle_mismatches;
+        if (c.first_problem.empty()) {
+          c.first_problem = at + std::to_string(lf.triangles[w]) + " triangles, serial loop made " +
+                            std::to_string(wl_.serial_triangles[static_cast<std::size_t>(f)]);
+        }
+      }
+    }
+    wall_total += wall_ms;
+    c.limit_copy_spread_sum += mean_ns > 0 ? slowest_ns / mean_ns : 1.0;
+    ++c.frames_run;
+    c.frame_ms.back()[static_cast<std::size_t>(f)] = ms;
+    total += ms;
+  }
+  c.usage += nz::usage_between(before, sample());
+  unpin_caller();
+  c.path_ms.back() += total;
+  c.rounds.add(round, total, probe, segment);
+  c.limit_wall.add(round, wall_total, probe, segment);
+  c.sampled.add(round, sampled_ms, probe, segment);
+  c.round_planted_ms.push_back(0);
 }
 
 // openmp-static-steal: the child runs the segment (llvm_openmp_child.hpp); the same accounting and the same
@@ -357,6 +461,7 @@ void Measurement::run_child_segment(Cell& c, std::size_t round, int segment, dou
     const sc::ChildFrame& cf = frames[static_cast<std::size_t>(f - first)];
     const double ms = account_frame(c, f, {cf.stats, cf.audit, cf.triangles, cf.inconsistent, ""},
                                     wl_.serial_triangles[static_cast<std::size_t>(f)]);
+    c.account.add_frame(cf.stats, static_cast<double>(cf.stats.wall_ns), {});  // its own clock: no other here
     c.frame_ms.back()[static_cast<std::size_t>(f)] = ms;
     total += ms;
   }

@@ -24,9 +24,10 @@
 #include <string>
 #include <vector>
 
-#include "core/execution_counter.hpp"
+#include "core/execution_log.hpp"
 #include "measure/thread_pinning.hpp"
 #include "measure/interference.hpp"
+#include "measure/item_sampler.hpp"
 #include "measure/noise_monitor.hpp"
 #include "measure/pass_usage.hpp"
 #include "schedulers/main_job/cell.hpp"
@@ -51,7 +52,8 @@ class Measurement {
  public:
   // One cell per P in o.threads and scheduler in o.schedulers (and the calibration arms), nothing started yet.
   // `warm` gives the serial frame times the planted work is sized from.
-  Measurement(Options& o, Workload& wl, FrameTessellator& tess, const WarmUp& warm);
+  // `limit`: the limit arms' copies (nullptr: no limit arm).
+  Measurement(Options& o, Workload& wl, FrameTessellator& tess, const WarmUp& warm, LimitCopies* limit);
 
   // Constructs every cell's scheduler (static partitions computed here, timed; the first instance of each
   // cell; run_rounds builds fresh ones every o.instance_frames frames) and runs one untimed warm-up frame;
@@ -75,6 +77,10 @@ class Measurement {
   const std::vector<double>& serial_probe() const { return serial_probe_; }
   const std::vector<nz::PassUsage>& serial_pass_usage() const { return serial_pass_usage_; }
   const measure::ArmRounds& serial_rounds() const { return serial_rounds_; }
+  // Per round as serial_rounds(): the serial loop's work on the sampled surfaces (ms).
+  const measure::ArmRounds& serial_sampled() const { return serial_sampled_; }
+  // The harness's item sampler (how many surfaces it times, what one clock read costs).
+  const measure::ItemSampler& sampler() const { return sampler_; }
   const std::vector<Cell>& cells() const { return cells_; }
   const std::vector<Cell>& not_available() const { return not_available_; }
   const nz::ProcSample& measure_start() const { return measure_start_; }
@@ -98,6 +104,8 @@ class Measurement {
   void run_serial_segment(std::size_t round, int segment, double probe);
   void run_cell_segment(Cell& c, std::size_t round, int segment, double probe);
   void run_child_segment(Cell& c, std::size_t round, int segment, double probe);
+  void run_limit_segment(Cell& c, std::size_t round, int segment, double probe);
+  void add_limit_arms();
   void begin_pass();
   void renew_instances(int pass, int first_frame);
   int instance_of(const Cell& c) const;
@@ -107,9 +115,11 @@ class Measurement {
   Options& o_;
   Workload& wl_;
   FrameTessellator& tess_;
+  LimitCopies* limit_copies_;
   const ThreadPinning pinning_;
   fi::CoRunner co_runner_;
-  ExecutionCounter runs_;
+  ExecutionLog runs_;  // the exactly-once audit: a plain log per worker (core/execution_log.hpp says why)
+  measure::ItemSampler sampler_;
   std::vector<Cell> cells_, not_available_;
   std::vector<double> serial_path_ms_;                // per pass
   std::vector<std::vector<double>> serial_frame_ms_;  // [pass][frame]
@@ -117,6 +127,7 @@ class Measurement {
   std::vector<double> serial_probe_;                  // per pass: the smallest CPU speed probe before its segments
   std::vector<nz::PassUsage> serial_pass_usage_;      // per pass: what the serial loop's thread did (pass_usage.hpp)
   measure::ArmRounds serial_rounds_;                  // per round: the serial loop's segment time, probe, segment
+  measure::ArmRounds serial_sampled_;                 // per round: the serial loop's sampled work (ms)
   double pass_probe_min_ = 0;                         // the smallest probe before the serial loop's segments this pass
   std::vector<WorkerId> ps_;                          // the P of the rounds: every P some cell runs at
   std::size_t rounds_done_ = 0;

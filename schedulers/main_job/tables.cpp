@@ -10,6 +10,13 @@ namespace {
 
 std::string fixed(double v, int digits) { return report::fixed_text(v, digits); }
 
+// "0.981 [0.952, 1.012]": (W_limit / P) / T_P with its interval, or "-" without a limit arm.
+std::string limit_efficiency_text(const Row& r) {
+  if (!r.vs_limit || !r.vs_limit->c.chosen().valid) return "-";
+  return fixed(r.limit_efficiency(), 3) + " [" + fixed(r.limit_efficiency_low(), 3) + ", " +
+         fixed(r.limit_efficiency_high(), 3) + "]";
+}
+
 }  // namespace
 
 // The table as the terminal and frontsteal.md show it: the serial loop first, then every scheduler and P,
@@ -32,10 +39,23 @@ report::Table shown_table(const Measured& m, const Analysis& a) {
                    {"verdict_vs_serial", "vs serial", text},
                    {"ratio_vs_queue", "T_P/T_queue [95% CI]", text},
                    {"verdict_vs_queue", "vs queue-mutex", text},
+                   {"limit_efficiency", "limit-eff [95% CI]", text},
                    {"audit", "audit", text}});
   t.add_row({1, "serial loop (T1)", fixed(1000.0 * m.o.frames / a.t1_ms, 2), "1.00", "100.0", "-", "-", "-", "-", "-",
-             "-", "reference", "-", "-", "-", "-"});
+             "-", "reference", "-", "-", "-", "-", "-"});
+  WorkerId shown_limit = 0;
   for (const Row& r : a.rows) {
+    // Each P's rows start with its limit arm (P serial loops at once): the reference of the limit-efficiency.
+    for (const LimitRow& l : a.limits) {
+      if (l.cell->workers != r.cell->workers || l.cell->workers == shown_limit) continue;
+      shown_limit = l.cell->workers;
+      const double fps = 1000.0 * m.o.frames * l.speedup / a.t1_ms;
+      t.add_row({l.cell->workers, std::string(kLimitName) + " (" + std::to_string(l.cell->workers) + " serial loops)",
+                 fixed(fps, 2), fixed(l.speedup, 2),
+                 fixed(100 * l.speedup / std::min<double>(l.cell->workers, m.cores), 1), "-", "-", "-", "-", "-", "-",
+                 l.vs_serial.interval_text(), l.vs_serial.verdict_text(), "-", "-", "reference",
+                 l.cell->failed() ? "FAILED" : "ok"});
+    }
     const Cell& c = *r.cell;
     const std::uint64_t failed = c.totals.steal_attempts - c.totals.steals_succeeded;
     t.add_row({c.workers, c.scheduler, fixed(r.fps, 2), fixed(r.speedup, 2), fixed(r.ideal_pct, 1),
@@ -44,11 +64,42 @@ report::Table shown_table(const Measured& m, const Analysis& a) {
                fixed(r.cpu_pct, 1) + "%", fixed(r.off_cpu_pct, 1) + "%", r.vs_serial.interval_text(),
                r.vs_serial.verdict_text(), r.vs_queue ? r.vs_queue->interval_text() : "-",
                r.vs_queue ? r.vs_queue->verdict_text() : (c.scheduler == "queue-mutex" ? "reference" : "-"),
-               c.failed() ? "FAILED" : "ok"});
+               limit_efficiency_text(r), c.failed() ? "FAILED" : "ok"});
   }
   for (const Cell& c : m.not_available) {
     t.add_row({c.workers, c.scheduler, "not available: " + c.unavailable, "-", "-", "-", "-", "-", "-", "-", "-", "-",
-               "-", "-", "-", "-"});
+               "-", "-", "-", "-", "-"});
+  }
+  return t;
+}
+
+report::Table account_table(const Analysis& a) {
+  const bool text = false;
+  std::vector<report::Column> columns{{"workers", "P"},
+                                      {"scheduler", "scheduler", text},
+                                      {"limit_efficiency", "limit-eff [95% CI]", text},
+                                      {"work_at_limit", "work at the limit's speed"},
+                                      {"inflation_beyond_limit", "inflation beyond the limit's"}};
+  for (std::size_t i = 1; i < kTerms; ++i) {
+    const auto term = static_cast<Term>(i);
+    columns.push_back({name(term), name(term)});
+  }
+  columns.push_back({"closes", "closes", text});
+  report::Table t(std::move(columns));
+  auto pct = [](double share) { return fixed(100 * share, 1); };
+  for (const Row& r : a.rows) {
+    const Account& acc = r.account;
+    std::vector<report::Cell> row{r.cell->workers, r.cell->scheduler, limit_efficiency_text(r)};
+    if (acc.split_by_limit) {
+      row.emplace_back(pct(acc.work_at_limit));
+      row.emplace_back(pct(acc.inflation_beyond_limit));
+    } else {
+      row.emplace_back(pct(acc.terms.share(Term::kWork)));
+      row.emplace_back("-");
+    }
+    for (std::size_t i = 1; i < kTerms; ++i) row.emplace_back(pct(acc.terms.share(static_cast<Term>(i))));
+    row.emplace_back(acc.terms.closes() ? "yes" : "NO");
+    t.add_row(std::move(row));
   }
   return t;
 }

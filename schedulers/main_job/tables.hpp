@@ -12,5 +12,8 @@ namespace frontsteal::main_job {
 report::Table shown_table(const Measured& m, const Analysis& a);
 // The serial loop first, then every scheduler and P that ran.
 report::Table data_table(const Measured& m, const Analysis& a);
+// Where the time went: per P and scheduler, its limit-efficiency and every term of its loss account (shares of
+// P x T, loss_account.hpp), the work split by the limit's inflation.
+report::Table account_table(const Analysis& a);
 
 }  // namespace frontsteal::main_job

@@ -51,7 +51,7 @@ PreparedScene prepare_scene(const Options& o, unsigned cores) {
   return scene;
 }
 
-WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess) {
+WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess, LimitCopies* limit) {
   const auto n = wl.model.surfaces.size();
   WarmUp w{std::vector<std::vector<double>>(o.frames, std::vector<double>(n)),
            std::vector<std::vector<double>>(o.frames, std::vector<double>(n)), 0};
@@ -69,6 +69,7 @@ WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess) {
       tess.run(f, id, 0);
       w.item_ns[f][id] = static_cast<double>(
           std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+      if (limit) limit->grow(f, id);
     }
     wl.serial_triangles.push_back(tess.frame_triangles());
     wl.serial_inconsistencies.push_back(tess.count_inconsistent());

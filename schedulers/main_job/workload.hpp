@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/id_range.hpp"
+#include "schedulers/main_job/limit_arm.hpp"
 #include "schedulers/main_job/options.hpp"
 #include "schedulers/registry.hpp"
 #include "tessellate/frame_workload.hpp"
@@ -47,6 +48,8 @@ struct WarmUp {
   std::vector<std::vector<double>> item_ns, item_estimate;
   double seconds = 0;  // the pass's wall time: about T1
 };
-WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess);
+// `limit` (when the run has a limit arm): its copies are grown beside the scene's buffers, surface by surface,
+// untimed (limit_arm.hpp says why).
+WarmUp warm_up(const Options& o, Workload& wl, FrameTessellator& tess, LimitCopies* limit);
 
 }  // namespace frontsteal::main_job
