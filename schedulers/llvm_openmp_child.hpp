@@ -33,7 +33,13 @@
 namespace frontsteal::sched {
 
 inline constexpr std::string_view kLlvmOpenMpName = "openmp-static-steal";
-inline constexpr std::string_view kLlvmOpenMpSummary = "LLVM libomp static_steal (clang++-14), in a child process";
+inline constexpr std::string_view kLlvmOpenMpSummary =
+    "LLVM libomp static_steal (clang++-14), in a child process, chunk N/(100P)";
+// The same child with chunk 1, libomp's default: at P = 2 here each claim then cost ~0.2 us more than at P = 1
+// (a cache line moving between the threads per claim), a fifth of the frame; kept to measure that against.
+inline constexpr std::string_view kLlvmOpenMpChunk1Name = "openmp-static-steal:chunk1";
+inline constexpr std::string_view kLlvmOpenMpChunk1Summary =
+    "variant of openmp-static-steal: chunk 1 (libomp's default)";
 
 // The child executable this build made (FRONTSTEAL_LLVM_OPENMP overrides it), and why it is not available
 // ("" when it is: built, and the file exists).

@@ -84,8 +84,16 @@ std::vector<SchedulerInfo> build() {
                     [](const SchedulerConfig& c, const WorkloadHints&) { return make_tbb_affinity_scheduler(c); }};
   tbb.cpu_time = false;
   all.push_back(std::move(tbb));
-  all.push_back({"openmp-dynamic", "OpenMP schedule(dynamic)", Contract::kExactlyOnce, false,
+  all.push_back({"openmp-dynamic", "OpenMP schedule(dynamic), chunk N/(100P)", Contract::kExactlyOnce, false,
                  [](const SchedulerConfig& c, const WorkloadHints&) { return make_openmp_dynamic_scheduler(c); }});
+  SchedulerInfo omp_chunk1{"openmp-dynamic:chunk1", "variant of openmp-dynamic: chunk 1 (OpenMP's default)",
+                           Contract::kExactlyOnce, false, [](const SchedulerConfig& c, const WorkloadHints&) {
+                             SchedulerConfig one = c;
+                             if (one.grain == 0) one.grain = 1;
+                             return make_openmp_dynamic_scheduler(one);
+                           }};
+  omp_chunk1.variant = true;
+  all.push_back(std::move(omp_chunk1));
   return all;
 }
 

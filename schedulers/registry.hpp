@@ -10,13 +10,15 @@
 //   stealing/<Policy>     the core protocol (§4.2), per memory-order policy          busy, steals
 //   chase-lev             Chase–Lev deques (Lê et al. orders), binary range split    busy, steals
 //   tbb-affinity          oneTBB parallel_for + affinity_partitioner                 busy
-//   openmp-dynamic        OpenMP schedule(dynamic)                                    busy
+//   openmp-dynamic        OpenMP schedule(dynamic), chunk N/(100P) as the global queue  busy
 // Not in this table (another process, another OpenMP runtime): openmp-static-steal, LLVM libomp's
 // static_steal, run by the main job as a child process (schedulers/llvm_openmp/, llvm_openmp_child.hpp).
 //
 // Variants (SchedulerInfo::variant, never in `all`):
 //   stealing/Fenced:caller-works      the calling thread runs worker 0's part of each frame (core/
 //                                     stealing_scheduler.hpp: tried, equivalent, not the default)
+//   openmp-dynamic:chunk1             OpenMP's default chunk: every claim a fetch_add on the team's shared
+//                                     counter (~0.2 us per item at P = 2 here: the line moves between cores)
 //   stealing/Fenced:no-account        no loss account: no phase timer (core/phase_timer.hpp), and the main job
 //                                     samples none of its items (measure/item_sampler.hpp): what the account costs
 //

@@ -130,7 +130,7 @@ std::int64_t StaticStealFrames::run_frame(int f) {
 }
 
 void StaticStealFrames::warm_up() {
-  run_frame(0);
+  for (int f = 0; f < o_.frames; ++f) run_frame(f);
   std::fill(runs_.begin(), runs_.end(), 0u);
 }
 

@@ -679,9 +679,9 @@ void summary_lines(const Measured& m, Analysis& a) {
   std::ostringstream child;  // how openmp-static-steal ran, and the proof that static_steal was in effect
   for (const Cell& c : m.cells) {
     if (c.child) {
-      child << sc::kLlvmOpenMpName << " P=" << c.workers << ": child process "
-            << shown_path(sc::llvm_openmp_child_path()) << " (clang++-14, libomp; per-item code compiled by clang), "
-            << c.child->ready_line() << "; steals = chunks run off their static owner\n";
+      child << c.scheduler << " P=" << c.workers << ": child process " << shown_path(sc::llvm_openmp_child_path())
+            << " (clang++-14, libomp; per-item code compiled by clang), " << c.child->ready_line()
+            << "; steals = chunks run off their static owner\n";
     }
   }
   a.child_note = child.str();

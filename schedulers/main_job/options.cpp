@@ -98,6 +98,8 @@ namespace {
                     ? ""
                     : "  [not available: " + sc::llvm_openmp_unavailable_reason() + "]")
             << '\n';
+  std::cout << std::left << std::setw(34) << sc::kLlvmOpenMpChunk1Name << sc::kLlvmOpenMpChunk1Summary
+            << "  [variant: only when named in --schedulers]\n";
   std::exit(0);
 }
 
@@ -117,7 +119,7 @@ std::vector<std::string> chosen_schedulers(const std::vector<std::string>& asked
     return wanted;
   }
   for (const auto& name : asked) {
-    if (name == sc::kLlvmOpenMpName) {
+    if (name == sc::kLlvmOpenMpName || name == sc::kLlvmOpenMpChunk1Name) {
       wanted.push_back(name);
       continue;
     }

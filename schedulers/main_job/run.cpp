@@ -166,8 +166,12 @@ bool Measurement::start_child(Cell& c) {
   if (c.unavailable.empty()) {
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      c.child = std::make_unique<sc::LlvmOpenMpChild>(c.workers, static_cast<ItemId>(wl_.model.surfaces.size()),
-                                                      child_workload(o_));
+      // The chunk: --grain, else the rule of every scheduler that claims from a shared cursor (N / (100 P),
+      // paper §4.1), else 1 for the chunk-1 variant.
+      sc::ChildWorkload cw = child_workload(o_);
+      const auto n = static_cast<ItemId>(wl_.model.surfaces.size());
+      cw.grain = c.scheduler == sc::kLlvmOpenMpChunk1Name ? 1 : o_.grain ? o_.grain : sc::default_grain(n, c.workers);
+      c.child = std::make_unique<sc::LlvmOpenMpChild>(c.workers, n, cw);
     } catch (const std::exception& e) {
       c.unavailable = e.what();
     }
@@ -198,7 +202,7 @@ bool Measurement::start_cells(const sc::WorkloadHints& hints) {
   std::uint64_t draw = 0;
   for (Cell& c : cells_) {
     ++draw;
-    if (c.scheduler == sc::kLlvmOpenMpName) {
+    if (c.scheduler == sc::kLlvmOpenMpName || c.scheduler == sc::kLlvmOpenMpChunk1Name) {
       start_child(c);
       continue;
     }
