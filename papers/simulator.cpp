@@ -45,24 +45,46 @@ struct ItemCharge {
   }
 };
 
-// What every model reports for one frame.
+// What every model reports for one frame, per worker where it is a vector.
 struct FrameOutcome {
   double last_finish_ns = 0;
-  std::vector<double> busy_ns;           // per worker: item costs it ran
-  std::vector<std::vector<ItemId>> ran;  // per worker: the items it ran, in order
+  std::vector<double> busy_ns;           // item costs it ran
+  std::vector<std::vector<ItemId>> ran;  // the items it ran, in order
+  std::vector<double> start_ns;          // its first event (the wake-up)
+  std::vector<double> last_end_ns;       // the end of its last item (its start when it ran none)
+  std::vector<double> claim_ns;          // per-claim costs beyond the per-item cost (a queue's lock holds)
+  std::vector<double> search_ns;         // failed attempts and lock waits before it found work
+  std::vector<double> steal_ns;          // successful steals
+  void resize(WorkerId p) {
+    busy_ns.assign(p, 0);
+    ran.assign(p, {});
+    start_ns.assign(p, 0);
+    last_end_ns.assign(p, 0);
+    claim_ns.assign(p, 0);
+    search_ns.assign(p, 0);
+    steal_ns.assign(p, 0);
+  }
+  // Worker w starts at `at` (its first event).
+  void start(WorkerId w, double at) { start_ns[w] = last_end_ns[w] = at; }
 };
 
-FrameOutcome run_static(const ItemCharge& cost, const sched::Assignment& lists, const ModelCosts& mc, double skew) {
+// The per-item overhead a model charges: its scheduler's claim and the harness's checks.
+double item_overhead(const ModelCosts& mc, const Overheads& o) { return mc.item_ns + o.checks_ns; }
+
+FrameOutcome run_static(const ItemCharge& cost, const sched::Assignment& lists, const ModelCosts& mc,
+                        const Overheads& o) {
   FrameOutcome out;
-  out.busy_ns.assign(lists.size(), 0);
+  out.resize(static_cast<WorkerId>(lists.size()));
   out.ran = lists;
   for (std::size_t w = 0; w < lists.size(); ++w) {
-    double t = static_cast<double>(w) * skew;
+    double t = o.wake_of(static_cast<unsigned>(w));
+    out.start(static_cast<WorkerId>(w), t);
     for (ItemId id : lists[w]) {
       const double c = cost(id, static_cast<WorkerId>(w));
       out.busy_ns[w] += c;
-      t += c + mc.item_ns;
+      t += c + item_overhead(mc, o);
     }
+    out.last_end_ns[w] = t;
     out.last_finish_ns = std::max(out.last_finish_ns, t);
   }
   return out;
@@ -72,10 +94,13 @@ FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, S
   const auto n = static_cast<ItemId>(cost.cost.size());
   const ItemId grain = sched::default_grain(n, p);
   FrameOutcome out;
-  out.busy_ns.assign(p, 0);
-  out.ran.assign(p, {});
+  out.resize(p);
   EventQueue events;
-  for (WorkerId w = 0; w < p; ++w) events.push(w * o.wake_skew_ns, w);
+  for (WorkerId w = 0; w < p; ++w) {
+    events.push(o.wake_of(w), w);
+    out.start(w, o.wake_of(w));
+  }
+  std::vector<double> waiting_since(p, -1);  // [w]: when w found the lock held (its wait is search once granted)
   ItemId cursor = 0;
   double free_at = 0;
   WorkerId last_holder = p;       // none yet
@@ -92,10 +117,15 @@ FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, S
       // running worker take it first (barging), so a slow wake-up delays the sleeper, not the queue.
       ++totals.lock_waits;
       woken[e.worker] = 1;
+      if (waiting_since[e.worker] < 0) waiting_since[e.worker] = e.at;
       events.push(free_at + o.lock_wake_ns, e.worker);
       continue;
     }
     const double granted = e.at;
+    if (waiting_since[e.worker] >= 0) {
+      out.search_ns[e.worker] += granted - waiting_since[e.worker];
+      waiting_since[e.worker] = -1;
+    }
     const double hold = woken[e.worker] ? o.lock_handoff_ns
                                         : o.lock_uncontended_ns +
                                               (last_holder != p && last_holder != e.worker ? o.line_transfer_ns : 0);
@@ -104,13 +134,15 @@ FrameOutcome run_queue(const ItemCharge& cost, WorkerId p, const Overheads& o, S
     last_holder = e.worker;
     const ItemId first = cursor;
     cursor = std::min<ItemId>(n, cursor + grain);
+    out.claim_ns[e.worker] += hold;
     double t = granted + hold;
     for (ItemId id = first; id < cursor; ++id) {
       const double c = cost(id, e.worker);
       out.busy_ns[e.worker] += c;
       out.ran[e.worker].push_back(id);
-      t += c + o.queue.item_ns;
+      t += c + item_overhead(o.queue, o);
     }
+    out.last_end_ns[e.worker] = t;
     events.push(t, e.worker);
   }
   return out;
@@ -151,10 +183,13 @@ FrameOutcome run_stealing(const ItemCharge& cost, StealingState& state, const Ov
     unclaimed += static_cast<std::int64_t>(ws[w].end);
   }
   FrameOutcome out;
-  out.busy_ns.assign(p, 0);
-  out.ran.assign(p, {});
+  out.resize(p);
+  std::vector<double> pending_search(p, 0);  // [w]: failed attempts since w's last item (search once it steals)
   EventQueue events;
-  for (WorkerId w = 0; w < p; ++w) events.push(w * o.wake_skew_ns, w);
+  for (WorkerId w = 0; w < p; ++w) {
+    events.push(o.wake_of(w), w);
+    out.start(w, o.wake_of(w));
+  }
   while (!events.empty()) {
     const auto e = events.pop();
     Worker& me = ws[e.worker];
@@ -170,7 +205,8 @@ FrameOutcome run_stealing(const ItemCharge& cost, StealingState& state, const Ov
       const double c = cost(id, e.worker);
       out.busy_ns[e.worker] += c;
       out.ran[e.worker].push_back(id);
-      events.push(e.at + c + o.stealing.item_ns, e.worker);
+      out.last_end_ns[e.worker] = e.at + c + item_overhead(o.stealing, o);
+      events.push(out.last_end_ns[e.worker], e.worker);
       continue;
     }
     if (unclaimed <= 0 || p == 1) {  // every list is empty: the worker is done
@@ -181,7 +217,9 @@ FrameOutcome run_stealing(const ItemCharge& cost, StealingState& state, const Ov
     Worker& victim = ws[order[me.next_victim++ % order.size()]];
     if (victim.lock_free_at > e.at || victim.front >= victim.end) {
       const double cost = victim.lock_free_at > e.at ? o.steal_busy_ns() : o.steal_empty_ns();
-      events.push(e.at + failed_attempt(cost, me.failures_in_round, p, o, totals), e.worker);
+      const double spent = failed_attempt(cost, me.failures_in_round, p, o, totals);
+      pending_search[e.worker] += spent;
+      events.push(e.at + spent, e.worker);
     } else {  // steal the second half; End is lowered at once, the share is ours when the steal's time is over
       const std::size_t mid = simulation::steal_mid(victim.front, victim.end);
       me.share.assign(victim.list.begin() + static_cast<std::ptrdiff_t>(mid),
@@ -190,6 +228,9 @@ FrameOutcome run_stealing(const ItemCharge& cost, StealingState& state, const Ov
       victim.lock_free_at = e.at + o.steal_ns();
       me.failures_in_round = 0;
       ++totals.steals;
+      out.search_ns[e.worker] += pending_search[e.worker];
+      pending_search[e.worker] = 0;
+      out.steal_ns[e.worker] += o.steal_ns();
       events.push(e.at + o.steal_ns(), e.worker);
     }
   }
@@ -215,10 +256,13 @@ FrameOutcome run_chase_lev(const ItemCharge& cost, WorkerId p, const Overheads& 
   }
   std::int64_t remaining = n;
   FrameOutcome out;
-  out.busy_ns.assign(p, 0);
-  out.ran.assign(p, {});
+  out.resize(p);
+  std::vector<double> pending_search(p, 0);
   EventQueue events;
-  for (WorkerId w = 0; w < p; ++w) events.push(w * o.wake_skew_ns, w);
+  for (WorkerId w = 0; w < p; ++w) {
+    events.push(o.wake_of(w), w);
+    out.start(w, o.wake_of(w));
+  }
   std::uniform_int_distribution<WorkerId> other(0, p > 1 ? p - 2 : 0);
   while (!events.empty()) {
     const auto e = events.pop();
@@ -233,7 +277,8 @@ FrameOutcome run_chase_lev(const ItemCharge& cost, WorkerId p, const Overheads& 
       const double c = cost(id, e.worker);
       out.busy_ns[e.worker] += c;
       out.ran[e.worker].push_back(id);
-      events.push(e.at + c + o.chase_lev.item_ns, e.worker);
+      out.last_end_ns[e.worker] = e.at + c + item_overhead(o.chase_lev, o);
+      events.push(out.last_end_ns[e.worker], e.worker);
       continue;
     }
     if (me.top < me.deque.size()) {  // take the newest range, split off upper halves down to one item
@@ -259,12 +304,17 @@ FrameOutcome run_chase_lev(const ItemCharge& cost, WorkerId p, const Overheads& 
     Worker& victim = ws[v];
     if (victim.top >= victim.deque.size() || victim.top_busy_until > e.at) {
       const double cost = victim.top >= victim.deque.size() ? o.steal_empty_ns() : o.steal_busy_ns();
-      events.push(e.at + failed_attempt(cost, me.failures_in_round, p, o, totals), e.worker);
+      const double spent = failed_attempt(cost, me.failures_in_round, p, o, totals);
+      pending_search[e.worker] += spent;
+      events.push(e.at + spent, e.worker);
     } else {
       me.stolen = victim.deque[victim.top++];
       victim.top_busy_until = e.at + o.steal_chase_lev_ns();
       me.failures_in_round = 0;
       ++totals.steals;
+      out.search_ns[e.worker] += pending_search[e.worker];
+      pending_search[e.worker] = 0;
+      out.steal_ns[e.worker] += o.steal_chase_lev_ns();
       events.push(e.at + o.steal_chase_lev_ns(), e.worker);
     }
   }
@@ -302,7 +352,7 @@ SimulatedRun simulate(const CostTrace& trace, const Overheads& o, const Simulati
     const ModelCosts* mc = nullptr;
     switch (opt.model) {
       case Model::static_list:
-        fo = run_static(cost, *opt.assignment, o.static_list, o.wake_skew_ns);
+        fo = run_static(cost, *opt.assignment, o.static_list, o);
         mc = &o.static_list;
         break;
       case Model::queue:
@@ -318,8 +368,20 @@ SimulatedRun simulate(const CostTrace& trace, const Overheads& o, const Simulati
         mc = &o.chase_lev;
         break;
     }
-    const double frame = fo.last_finish_ns + o.frame_ns(*mc, p);
+    const double frame = fo.last_finish_ns + (o.account_model() ? o.join_ns : o.frame_ns(*mc, p));
     run.frame_ns.push_back(frame);
+    for (WorkerId w = 0; w < p; ++w) {
+      const auto items = static_cast<double>(fo.ran[w].size());
+      SimulatedAccount& a = run.account;
+      a.work += fo.busy_ns[w];
+      a.claim += items * mc->item_ns + fo.claim_ns[w];
+      a.checks += items * o.checks_ns;
+      a.wake += fo.start_ns[w];
+      a.search += fo.search_ns[w];
+      a.steal += fo.steal_ns[w];
+      a.termination += frame - fo.last_end_ns[w];
+      a.available += frame;
+    }
     run.path_ns += frame;
     const double busy = std::accumulate(fo.busy_ns.begin(), fo.busy_ns.end(), 0.0);
     busy_total += busy;

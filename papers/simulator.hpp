@@ -56,7 +56,19 @@ struct SimulationOptions {
   bool plant_ignore_affinity = false;     // negative control: the affinity penalty is never charged
 };
 
+// A simulated frame's loss account (schedulers/main_job/loss_account.hpp's terms, as far as the model has
+// them), summed over frames and workers, in ns: work (the items' traced costs, with the affinity penalty and any
+// slowdown), claim (the model's per-item cost and a queue's lock holds), checks (the harness's per-item checks),
+// wake (release → the worker's first item), search (failed attempts and lock waits before work was found), steal
+// (successful steals), termination (the worker's last item → the frame's end: the last, failed search and the
+// join). available = frame x P; the terms add up to it.
+struct SimulatedAccount {
+  double work = 0, claim = 0, checks = 0, wake = 0, search = 0, steal = 0, termination = 0, available = 0;
+  double share(double term) const { return available > 0 ? term / available : 0; }
+};
+
 struct SimulatedRun {
+  SimulatedAccount account;
   double path_ns = 0;
   std::vector<double> frame_ns;
   double frames_per_s = 0;
