@@ -56,8 +56,9 @@ struct Overheads {
   // The loss account's constants (papers/validation.hpp, account_constants: taken from a measured account), for
   // predicting the account's terms; empty / 0 by default, so a calibration file written before they existed
   // replays as it did. With wake_by_worker_ns set, worker w starts its frame wake_by_worker_ns[min(w, last)]
-  // (beyond the measured workers, wake_skew_ns more per further worker) after the release, and a frame ends
-  // join_ns after the last worker's last item, instead of frame_ns's fixed costs.
+  // after the release (a further worker is woken on an idle core of its own, in parallel with the others, and
+  // costs the kernel's wake of one more thread: extra_worker_ns() more per further worker, ASSUMED), and a frame
+  // ends join_ns after the last worker's last item, instead of frame_ns's fixed costs.
   double checks_ns = 0;                   // per item: the harness's per-item checks
   std::vector<double> wake_by_worker_ns;  // per worker index: release → first claim
   double join_ns = 0;                     // the last worker's last item → the caller sees the frame done
@@ -65,7 +66,7 @@ struct Overheads {
   double wake_of(unsigned w) const {
     if (wake_by_worker_ns.empty()) return w * wake_skew_ns;
     const std::size_t last = wake_by_worker_ns.size() - 1;
-    return w <= last ? wake_by_worker_ns[w] : wake_by_worker_ns[last] + (w - last) * wake_skew_ns;
+    return w <= last ? wake_by_worker_ns[w] : wake_by_worker_ns[last] + (w - last) * extra_worker_ns();
   }
   double extra_worker_ns() const { return 1000 + 2 * line_transfer_ns; }
   double frame_ns(const ModelCosts& m, unsigned workers) const {

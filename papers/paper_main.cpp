@@ -21,6 +21,7 @@
 #include "papers/paper_run.hpp"
 #include "papers/table1_report.hpp"
 #include "papers/table2_report.hpp"
+#include "papers/scale_command.hpp"
 #include "papers/validate_command.hpp"
 #include "render/headless_gl.hpp"
 #include "reporting/build_stamp.hpp"
@@ -64,6 +65,11 @@ constexpr Subcommand kSubcommands[] = {
      "the simulator's held-out validation against main-job runs (--study DIR); takes its own options, "
      "see `frontsteal-paper validate --help`",
      nullptr, fp::run_validate_command},
+    {"scale",
+     "the loss account simulated: validated term by term against main-job runs with accounts (--study DIR), "
+     "then predicted for P up to 256 with the first bottleneck named; takes its own options, see "
+     "`frontsteal-paper scale --help`",
+     nullptr, fp::run_scale_command},
 };
 
 int run_all(fp::PaperRun& run) {

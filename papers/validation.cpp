@@ -34,6 +34,11 @@ MeasuredSet read_measured_set(const std::filesystem::path& file, const std::stri
   s.interference = need(inter, "on").get<bool>();
   if (s.interference) s.co_runner_share = need(inter, "co_runner_core_share_measured").get<double>();
   s.serial_ms = need(need(doc, "serial"), "path_ms").get<double>();
+  for (const report::Json& l : doc.value("limits", report::Json::array())) {
+    if (!l.contains("copy_relative_time")) continue;
+    std::vector<double>& t = s.limit_copy_time[l.at("workers").get<WorkerId>()];
+    for (const report::Json& v : l.at("copy_relative_time")) t.push_back(v.get<double>());
+  }
   for (const report::Json& r : need(doc, "results")) {
     MeasuredCell c;
     c.scheduler = need(r, "scheduler").get<std::string>();
@@ -52,9 +57,40 @@ MeasuredSet read_measured_set(const std::filesystem::path& file, const std::stri
     };
     c.vs_serial = ratio(r, "vs_serial");
     c.vs_queue = ratio(r, "vs_queue_mutex");
+    if (r.contains("account") && r["account"].is_object()) {
+      const report::Json& acc = r["account"];
+      MeasuredAccount m;
+      for (const auto& [term, share] : need(acc, "shares").items()) m.shares[term] = share.get<double>();
+      m.claim_per_item_ns = need(acc, "claim_per_item_ns").get<double>();
+      m.checks_per_item_ns = need(acc, "checks_per_item_ns").get<double>();
+      m.frames = need(acc, "frames").get<std::uint64_t>();
+      if (acc.contains("inflation") && acc["inflation"].is_object())
+        m.inflation = acc["inflation"]["factor"].get<double>();
+      for (const report::Json& w : need(r, "per_worker")) {
+        m.wake_ms.push_back(w.value("wake_ms", 0.0));
+        m.termination_ms.push_back(w.value("termination_ms", 0.0));
+      }
+      c.account = std::move(m);
+    }
     s.cells.push_back(c);
   }
   return s;
+}
+
+std::map<std::string, double> MeasuredAccount::shares_with_off_cpu() const {
+  std::map<std::string, double> out = shares;
+  const auto off = shares.find("off_cpu");
+  if (off == shares.end() || off->second <= 0) return out;
+  double span = 0;
+  for (const char* t : {"work", "claim", "checks", "search", "steal", "wait", "termination"}) {
+    if (shares.count(t)) span += shares.at(t);
+  }
+  if (span <= 0) return out;
+  for (const char* t : {"work", "claim", "checks", "search", "steal", "wait", "termination"}) {
+    if (out.count(t)) out[t] *= (span + off->second) / span;
+  }
+  out["off_cpu"] = 0;
+  return out;
 }
 
 std::optional<Model> model_of(const std::string& scheduler) {

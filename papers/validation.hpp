@@ -18,6 +18,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,13 +36,28 @@ struct MeasuredRatio {
   bool valid = false;
 };
 
+// The loss account the main job measured for one row (frontsteal.json schema 4, schedulers/main_job/
+// loss_account.hpp): every term's share of P x T, the sampled per-item timings, the work's inflation against the
+// serial loop, and per worker the wake-up and termination summed over the frames.
+struct MeasuredAccount {
+  std::map<std::string, double> shares;  // work, claim, checks, wake, search, steal, wait, termination, off_cpu, ...
+  double claim_per_item_ns = 0, checks_per_item_ns = 0;
+  double inflation = 1;  // the sampled work against the serial loop's (1 when not measured)
+  std::uint64_t frames = 0;
+  std::vector<double> wake_ms, termination_ms;  // per worker, summed over the frames
+  // The shares before off-CPU time was taken out of the in-span terms (the simulator has no off-CPU time):
+  // each in-span term t as t x (span + off) / span.
+  std::map<std::string, double> shares_with_off_cpu() const;
+};
+
 // One scheduler at one P of a main-job run.
 struct MeasuredCell {
   std::string scheduler;
   WorkerId workers = 0;
-  double path_ms = 0;                 // median of the repeats
-  double spread_pct = 0;              // the repeats' spread (max/min − 1), as the main job reports it
-  MeasuredRatio vs_serial, vs_queue;  // T_P / T1 and T_P / T_queue-mutex, paired by round (schema 3)
+  double path_ms = 0;                      // median of the repeats
+  double spread_pct = 0;                   // the repeats' spread (max/min − 1), as the main job reports it
+  MeasuredRatio vs_serial, vs_queue;       // T_P / T1 and T_P / T_queue-mutex, paired by round (schema 3)
+  std::optional<MeasuredAccount> account;  // schema 4
 };
 
 // One frontsteal.json: a path, with or without interference.
@@ -53,6 +69,7 @@ struct MeasuredSet {
   double co_runner_share = 0;  // of one core, measured while the schedulers ran (0 without interference)
   double serial_ms = 0;        // the serial loop's median path time (co-runner paused)
   std::vector<MeasuredCell> cells;
+  std::map<WorkerId, std::vector<double>> limit_copy_time;  // schema 4: per P, the limit arm's copy_relative_time
 };
 
 // Reads the fields above from a main-job JSON (schema 2, docs/results-schema.md); throws std::runtime_error

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # run_study_16core.sh — the P = 1 … 16 study in rounds, on a machine with 16 or more cores, in one bounded pass: the main
 # job with its calibration arms (every scheduler, P = 1, 2, 4, 8, 16; random order within rounds; verdicts
-# against the margin), then P = 16 beside a co-runner pinned to worker 0's core. Each step under its own time
-# limit; results land in OUT_DIR, one folder per step, with machine.txt and steps.txt (exit status, seconds).
+# against the margin; the limit arm, P serial loops at once, and every row's loss account are part of every run),
+# then P = 16 beside a co-runner pinned to worker 0's core. Each step under its own time limit; results land in
+# OUT_DIR, one folder per step, with machine.txt and steps.txt (exit status, seconds). The prediction it is
+# compared with is committed before the run (results/schedulers/study-16core-rounds/prediction-scale.md).
 #
 # Written for a borrowed machine with none of the project's packages: BIN_DIR holds the release executables
 # (frontsteal, frontsteal-llvm-openmp) and, in BIN_DIR/lib, the shared libraries they need from this project's
@@ -10,7 +12,8 @@
 # build/release's executables. Plots: run with --no-plot there; `gnuplot frontsteal.gp` in each folder draws them.
 #
 # usage: run_study_16core.sh BIN_DIR OUT_DIR [--passes N] [--threads L] [--round-frames F]
-#        (defaults: the committed run: 4 passes, P = 1,2,4,8,16, rounds of 2 frames)
+#        (defaults: 3 passes, P = 1,2,4,8,16, rounds of 2 frames: ~6 min for the main step with the limit arm's
+#        16 copies grown in the warm-up pass, within the device's 15 minutes with the start and the co-runner step)
 set -uo pipefail
 
 if [[ $# -lt 2 || $1 == --help || $1 == -h ]]; then
@@ -20,7 +23,7 @@ fi
 bin=$(cd "$1" && pwd) || { echo "run_study_16core.sh: BIN_DIR $1 does not exist" >&2; exit 2; }
 out=$2
 shift 2
-passes=4 threads=1,2,4,8,16 round_frames=2
+passes=3 threads=1,2,4,8,16 round_frames=2
 while [[ $# -gt 0 ]]; do
   case $1 in
     --passes) passes=$2; shift 2 ;;

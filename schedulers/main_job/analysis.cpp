@@ -270,7 +270,7 @@ void judge_rows(const Measured& m, Analysis& a) {
 }
 
 // The limit arm's rows, and every scheduler row's loss account and comparison with the limit at its P: per round
-// the row's time against W_limit / P (the limit's frame over its copies), and both arms' sampled work against
+// the row's time against the limit's throughput limit L per frame, and both arms' sampled work against
 // the serial loop's (work inflation).
 void scale_rows(const Measured& m, Analysis& a) {
   const measure::Settings settings = analysis_settings(m.o);
@@ -531,8 +531,9 @@ void scale_answer(const Measured& m, Analysis& a) {
     std::ostringstream s;
     s << "P = " << p << (p > m.cores ? " (oversubscribed)" : "") << ": " << r->cell->scheduler << " used "
       << fixed(100 * eff, 1) << " % [" << fixed(100 * r->limit_efficiency_low(), 1) << ", "
-      << fixed(100 * r->limit_efficiency_high(), 1) << "] of the machine's limit (" << p << " serial loops at once ran "
-      << fixed(l.speedup, 2) << "x the serial loop's frames)";
+      << fixed(100 * r->limit_efficiency_high(), 1) << "] of the machine's limit (" << p
+      << (p == 1 ? " serial loop on a worker thread ran " : " serial loops at once ran ") << fixed(l.speedup, 2)
+      << "x the serial loop's frames)";
     const auto loss = losses(*r);
     s << "; its largest losses, as shares of P x T:";
     for (std::size_t i = 0; i < std::min<std::size_t>(3, loss.size()); ++i) {
@@ -544,8 +545,8 @@ void scale_answer(const Measured& m, Analysis& a) {
     }
     const double machine = eff - ideal, scheduler = 1 - eff;
     s << ". Against the ideal T1 / " << std::min<WorkerId>(p, m.cores) << " it reached " << fixed(100 * ideal, 1)
-      << " %: the machine took " << fixed(100 * machine, 1) << " % (" << p
-      << " busy cores' own slowdown), the scheduler " << fixed(100 * scheduler, 1) << " % -- the "
+      << " %: the machine took " << fixed(100 * machine, 1) << " % (the limit's own loss with " << p
+      << (p == 1 ? " busy core" : " busy cores") << "), the scheduler " << fixed(100 * scheduler, 1) << " % -- the "
       << (std::fabs(machine) > std::fabs(scheduler) ? "machine's" : "scheduler's") << " loss dominates.";
     a.scale_answer.push_back(s.str());
   }

@@ -67,7 +67,7 @@ struct Row {
   std::optional<ShownComparison> vs_limit;       // T_P / L per round (L: the limit, limit_arm.hpp); efficiency 1 / that
   std::optional<ShownComparison> vs_limit_wall;  // T_P / (W / P): against the limit arm's wall time (a loose bound)
   Account account;
-  // limit-efficiency (W_limit / P) / T_P with its 95 % interval, from vs_limit (0 without a limit arm)
+  // limit-efficiency L / T_P with its 95 % interval, from vs_limit (0 without a limit arm)
   double limit_efficiency() const {
     return vs_limit && vs_limit->c.chosen().valid ? 1 / vs_limit->c.chosen().ratio() : 0;
   }

@@ -58,6 +58,7 @@ struct Cell {
                                                // limit arm: per copy), against the serial loop's: inflation
   AccountSums account;                         // the loss account's sums (loss_account.hpp)
   double limit_copy_spread_sum = 0;            // the limit arm: Σ over frames of its slowest copy / mean copy
+  std::vector<double> limit_copy_time_sum;     // the limit arm: per copy, Σ over frames of its time / the mean copy's
   measure::ArmRounds limit_wall;               // the limit arm, per round: release → last copy done (ms)
   // The limit arm's wall time per pass (the sum of its rounds in each pass), as path_ms is for its limit.
   std::vector<double> limit_wall_path_ms() const {

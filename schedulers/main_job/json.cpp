@@ -38,6 +38,13 @@ Json spread_json(const sc::CostSpread& c) {
           {"per_frame", per_frame}};
 }
 
+// Per copy of the limit arm, its time over the mean copy's, averaged over frames: how the cores' speeds differ.
+Json copy_relative_time(const Cell& c) {
+  Json out = Json::array();
+  for (double sum : c.limit_copy_time_sum) out.push_back(c.frames_run ? sum / static_cast<double>(c.frames_run) : 1.0);
+  return out;
+}
+
 Json inflation_json(const Inflation& i) {
   const measure::LogInterval& li = i.c.chosen();
   return {{"factor", li.ratio()}, {"ci95_low", li.ratio_low()}, {"ci95_high", li.ratio_high()}, {"rounds", i.c.rounds}};
@@ -210,6 +217,7 @@ Json results_json(const Measured& m, const Analysis& a, const report::Table& dat
                       {"vs_serial", l.vs_serial.json()},
                       {"inflation", l.inflation ? inflation_json(*l.inflation) : Json(nullptr)},
                       {"copy_spread", l.copy_spread},
+                      {"copy_relative_time", copy_relative_time(*l.cell)},
                       {"audit_failures", l.cell->triangle_mismatches + l.cell->tessellation_inconsistencies},
                       {"path_ms_per_repeat", l.cell->path_ms},
                       {"rounds", rounds_json(l.cell->rounds)},

@@ -226,7 +226,7 @@ Options parse_options(int argc, char** argv) {
   cli.flag("--no-limit", no_limit,
            "leave out the limit arm: at every P, P copies of the serial loop running at once, each over the whole "
            "frame into buffers of its own (the machine's own throughput limit with P busy cores; every scheduler's "
-           "limit-efficiency (W_limit / P) / T_P is measured against it, paired per round)");
+           "limit-efficiency L / T_P is measured against it, paired per round, L = 1 / (sum of the copies' rates))");
   cli.flag("--reuse", o.reuse,
            "frame-to-frame reuse, as the paper's renderer does: a surface whose steps and trim polylines did not "
            "change since the frame before keeps its triangles (identical to recomputing them, audited when "

@@ -27,8 +27,9 @@ std::string answer_text(const Analysis& a) {
   for (const std::string& line : a.answer) s << "  " << line << "\n";
   if (a.answer.empty()) s << "  no stealing scheduler was run (see --schedulers)\n";
   if (!a.scale_answer.empty()) {
-    s << "Scale, against the machine's own limit (the limit arm: P serial loops at once, each over the whole frame; "
-         "limit-efficiency = (W_limit / P) / T_P, paired per round):\n";
+    s << "Scale, against the machine's own limit (the limit arm: P serial loops at once, each over the whole frame "
+         "into buffers of its own; its throughput limit L = 1 / (sum of the copies' rates); limit-efficiency = "
+         "L / T_P, paired per round):\n";
     for (const std::string& line : a.scale_answer) s << "  " << line << "\n";
   }
   return s.str();

@@ -436,6 +436,10 @@ void Measurement::run_limit_segment(Cell& c, std::size_t round, int segment, dou
     }
     wall_total += wall_ms;
     c.limit_copy_spread_sum += mean_ns > 0 ? slowest_ns / mean_ns : 1.0;
+    c.limit_copy_time_sum.resize(lf.copy_ns.size(), 0.0);
+    for (std::size_t w = 0; w < lf.copy_ns.size(); ++w) {
+      c.limit_copy_time_sum[w] += mean_ns > 0 ? static_cast<double>(lf.copy_ns[w]) / mean_ns : 1.0;
+    }
     ++c.frames_run;
     c.frame_ms.back()[static_cast<std::size_t>(f)] = ms;
     total += ms;

@@ -10,7 +10,7 @@ namespace {
 
 std::string fixed(double v, int digits) { return report::fixed_text(v, digits); }
 
-// "0.981 [0.952, 1.012]": (W_limit / P) / T_P with its interval, or "-" without a limit arm.
+// "0.981 [0.952, 1.012]": L / T_P with its interval, or "-" without a limit arm.
 std::string limit_efficiency_text(const Row& r) {
   if (!r.vs_limit || !r.vs_limit->c.chosen().valid) return "-";
   return fixed(r.limit_efficiency(), 3) + " [" + fixed(r.limit_efficiency_low(), 3) + ", " +
