@@ -205,7 +205,8 @@ int run_scale_command(int argc, char** argv) {
 
     std::ostringstream md;
     md << "# The loss account, simulated: validated term by term, then predicted beyond the machine\n\n"
-       << "Machine: " << machine() << ". Commit " << FRONTSTEAL_GIT_COMMIT << ". Measured sets: `" << o.study
+       << "Machine: " << machine() << ". Commit " << FRONTSTEAL_GIT_COMMIT << ". Measured sets: the folders of `"
+       << std::filesystem::path(o.study).filename().string()
        << "` (the main job's frontsteal.json, schema 4). **Calibration set: " << cal->name
        << "**: the only measured accounts the model sees. Every other set is held out. Everything below marked "
           "SIMULATED is the simulator's; MEASURED is the main job's.\n\n"
