@@ -122,6 +122,20 @@ double TermComparison::error_pct(const std::string& term) const {
   return 100.0 * (p - m) / m;
 }
 
+double critical_path_bound(const CostTrace& trace, WorkerId p) {
+  double ideal = 0, bound = 0;
+  for (const std::vector<double>& frame : trace.cost_ns) {
+    double total = 0, largest = 0;
+    for (const double c : frame) {
+      total += c;
+      largest = std::max(largest, c);
+    }
+    ideal += total / p;
+    bound += std::max(total / p, largest);
+  }
+  return bound > 0 ? ideal / bound : 1.0;
+}
+
 std::vector<ScalePoint> sweep(const CostTrace& trace, const std::string& trace_name, double trace_scale,
                               const AccountConstants& c, const std::vector<std::string>& schedulers, WorkerId max_p,
                               std::uint64_t seed) {
@@ -129,8 +143,9 @@ std::vector<ScalePoint> sweep(const CostTrace& trace, const std::string& trace_n
   for (const std::string& s : schedulers) {
     for (WorkerId p = 1; p <= max_p; p *= 2) {
       PredictedAccount predicted = predict_account(trace, trace_scale, c, s, p, seed);
-      ScalePoint pt{trace_name, s, p, std::move(predicted.shares), predicted.path_ns, 0, ""};
+      ScalePoint pt{trace_name, s, p, std::move(predicted.shares), predicted.path_ns, 0, 1, ""};
       pt.limit_efficiency = pt.shares.at("work");
+      pt.critical_path_bound = critical_path_bound(trace, p);
       double largest = -1;
       for (const auto& [term, share] : pt.shares) {
         if (term != "work" && share > largest) {

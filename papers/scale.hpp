@@ -74,9 +74,15 @@ struct ScalePoint {
   WorkerId workers = 0;
   std::map<std::string, double> shares;
   double path_ns = 0;
-  double limit_efficiency = 0;  // the work's share: the limit is P copies of the same work at the same inflation
-  std::string largest_loss;     // the largest term but work
+  double limit_efficiency = 0;     // the work's share: the limit is P copies of the same work at the same inflation
+  double critical_path_bound = 1;  // critical_path_bound(trace, P)
+  std::string largest_loss;        // the largest term but work
 };
+
+// The best efficiency any schedule of whole items can reach at P on `trace`: per frame the work over P cannot end
+// before the frame's largest item does, so Σ_f (W_f / P) / Σ_f max(W_f / P, largest item of f). A frame whose
+// single costliest surface takes more than W_f / P caps every scheduler (a critical path of one item).
+double critical_path_bound(const CostTrace& trace, WorkerId p);
 
 // P = 1, 2, 4 ... max_p for every scheduler with a model, on one trace.
 std::vector<ScalePoint> sweep(const CostTrace& trace, const std::string& trace_name, double trace_scale,

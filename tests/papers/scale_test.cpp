@@ -129,3 +129,12 @@ TEST_CASE("off-CPU time is put back into the terms it was taken from", "[papers]
   CHECK(s.at("termination") == Approx(0.20));
   CHECK(s.at("wake") == Approx(0.10));
 }
+
+TEST_CASE("the largest-item bound: no schedule of whole items ends a frame before its costliest item", "[papers]") {
+  const fp::CostTrace even = trace_of({{10, 10, 10, 10}});
+  CHECK(fp::critical_path_bound(even, 2) == Approx(1.0));
+  CHECK(fp::critical_path_bound(even, 8) == Approx(0.5));  // 40 / 8 = 5 per worker, but an item takes 10
+  const fp::CostTrace skewed = trace_of({{30, 2, 2, 2}, {10, 10, 10, 10}});
+  // P = 4: frame 0 ideal 9, bound 30; frame 1 ideal 10, bound 10: (9 + 10) / (30 + 10).
+  CHECK(fp::critical_path_bound(skewed, 4) == Approx(19.0 / 40.0));
+}
