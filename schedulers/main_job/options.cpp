@@ -30,7 +30,11 @@ constexpr const char* kDescription =
     R"(Tessellates a scene along a deterministic camera path (an orbit of the whole model, then a zoom into a small
 corner region: the case where round robin becomes imbalanced, paper §3) with a serial loop and with every
 scheduler at P = 1 ... cores and oversubscribed (2 x cores), measured side by side in one run, and says first,
-in plain words, whether stealing is faster than the locked queue and than the best other scheduler at each P.
+in plain words, whether stealing is faster than the locked queue and than the best other scheduler at each P,
+and how close it comes to the machine's own limit: the limit arm runs P copies of the serial loop at once (each
+over the whole frame into buffers of its own; --no-limit leaves it out), and every scheduler's limit-efficiency
+L / T_P is measured against it, with the loss account of where the rest of P x T went (wake-up, items, claims,
+the harness's checks, search, steals, the wait on ListTransient, the frame's end, time off the CPU).
 
 How it measures. The run is made of ROUNDS. A round covers one segment of the path (--round-frames frames,
 default 1) at one P, and runs the serial loop and every arm at that P once on it — every scheduler, and with
@@ -77,7 +81,8 @@ round-robin rows' measured busy time per worker; worst frame and median over fra
 Outputs in DIR: frontsteal.json (everything, per frame and per round), frontsteal.csv and frontsteal.md (the
 answer, then the table), frontsteal-speedup.png (paired speed-up over the serial loop against P, with 95 %
 intervals; open marks: not decided), frontsteal-verdicts.png (every scheduler against queue-mutex, interval and
-margin), frontsteal-frames.png (frame time along the path); with --calibrate frontsteal-calibration.{md,json}.
+margin), frontsteal-frames.png (frame time along the path), frontsteal-account.png (where the time went beyond
+the items' work, with 1 - limit-efficiency); with --calibrate frontsteal-calibration.{md,json}.
 All figures are measured on this machine; none are simulated.
 Exit status: 0; 1 when an audit fails or a scheduler cannot run; 2 for bad usage (or a scene that cannot be
 loaded).)";

@@ -93,7 +93,11 @@ void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir&
   // P x T; a term below 0, as unaccounted can be, is drawn as 0), and 1 - limit-efficiency with its interval.
   std::ostringstream account;
   account << "label";
-  for (std::size_t i = 1; i < kTerms; ++i) account << ' ' << name(static_cast<Term>(i));
+  for (std::size_t i = 1; i < kTerms; ++i) {  // gnuplot's enhanced text would set "off_cpu" as a subscript
+    std::string column = name(static_cast<Term>(i));
+    std::replace(column.begin(), column.end(), '_', '-');
+    account << ' ' << column;
+  }
   account << " limit_loss limit_loss_low limit_loss_high\n";
   for (const Row& r : a.rows) {
     account << "\"P=" << r.cell->workers << " " << gnuplot_text(r.cell->scheduler) << "\"";
@@ -151,15 +155,20 @@ void write_plots(const Measured& m, const Analysis& a, const report::ResultsDir&
      << "plot for [i=0:" << blocks - 1
      << "] 'frontsteal-frames.dat' index i using 1:2 with linespoints "
         "lt 1+i%8 dt 1+i/8 pt 1+i title columnheader(1)\n";
+  // One fixed colour per term, in the order of the columns (claim ... unaccounted), none repeated.
+  static_assert(kTerms == 10, "one colour per loss term below");
   gp << "set output 'frontsteal-account.png'\n"
-     << "set title \"Where the time went beyond the items' work (measured): the loss account's terms, % of P x T; "
-        "black: 1 - limit-efficiency (the limit: P serial loops at once), 95 % interval\\n"
+     << "term_colours = '#1f77b4 #ff7f0e #2ca02c #d62728 #9467bd #8c564b #e377c2 #7f7f7f #bcbd22'\n"
+     << "set title \"Where the time went beyond the items' work (measured): the loss account's terms, % of P x T\\n"
+        "black: 1 - limit-efficiency with its 95 % interval (the limit: P serial loops at once)\\n"
      << gnuplot_text(a.machine) << "; " << rounds << " rounds per comparison\"\n"
      << "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.85 border -1\n"
      << "set boxwidth 0.75\nset key outside right top\nunset xlabel\nset ylabel '% of P x T'\n"
      << "set xtics rotate by -60 font 'sans,8' nomirror\nset autoscale x\nset yrange [*:*]\n"
-     << "plot for [i=2:" << kTerms << "] 'frontsteal-account.dat' using i:xtic(1) title columnheader(i), \\\n"
-     << "  '' using 0:" << kTerms + 1 << ":" << kTerms + 2 << ":" << kTerms + 3
+     << "plot for [i=2:" << kTerms
+     << "] 'frontsteal-account.dat' using i:xtic(1) lc rgb word(term_colours, i-1) title columnheader(i), \\\n"
+     // The header line is row 0 of a plain `using`; the histogram's first box stands at x = 0.
+     << "  '' using ($0-1):" << kTerms + 1 << ":" << kTerms + 2 << ":" << kTerms + 3
      << " with yerrorbars lc 'black' pt 7 ps 0.8 title '1 - limit-efficiency'\n";
   dir.write_gnuplot("frontsteal.gp", {1200, 760}, gp.str());
   if (o.plot) dir.plot("frontsteal.gp");
