@@ -158,19 +158,25 @@ struct Asymmetric {
 
 // Minimal: the weakest orders under which every model-checking scenario passes. Derived by
 // `frontsteal-modelcheck --derive-minimal Fenced` (greedy one-step weakening while every scenario passes) and
-// certified on every CI run: each one-step weakening of it is killed by some scenario
-// (results/models_check/). "Weakest" means no single site can be weakened one step, not a global optimum,
-// and it rests on Relacy's bounded search. Why each non-relaxed site is needed:
+// certified on every CI run: each one-step weakening of it is killed by some Relacy scenario, or — for the two
+// orders Relacy cannot see, because it never produces load buffering — by the axiomatic checker under C++ with
+// load buffering (models_check/minimal_survivors.hpp, results/models_check/). "Weakest" means no single site can
+// be weakened one step, not a global optimum, and it rests on bounded searches. Why each non-relaxed site is
+// needed:
 //   F1, F2 seq_cst   the Dekker handshake (O1 before O2, T3 before T4): without either, Paper's duplicate
 //   O4 release / T4 acquire   publish the owner's Front (O3) to the thief's re-read (T5)
+//   T3 release / O2 acquire   the thief's join (A1) happens-before the leave (A2) of a victim that sees its
+//                    steal: without them, under C++ with load buffering (and on ARMv8 without T3's release) the
+//                    victim's leave may come first, the count touches 0 while the share is uncounted, and an
+//                    idle worker quits early (exactly-once still holds). On x86 both are plain moves.
 //   L2 acquire / L3 release   the LockList protects End and the list body between thieves and installs
 //   E1 release, E3 acq_rel, E5 release, E6 acquire   frame boundaries order item effects across frames and
 //                    towards the caller
 //   E2 acquire       a worker takes over its per-frame fields (stats, lists) only after the caller is done
 //                    reading them. (An earlier derivation relaxed E2: those fields were invisible to Relacy
 //                    until frame_loop.hpp's `handover` cell stood for them; ThreadSanitizer found the race.)
-// The termination count (A1-A3) is relaxed: it decides only when idle workers stop looking for work; every
-// item is still ordered before the frame's end by E3.
+// The termination count (A1-A3) itself is relaxed: it decides only when idle workers stop looking for work, T3
+// and O2 order it where that matters, and every item is still ordered before the frame's end by E3.
 struct Minimal {
   static constexpr std::string_view kName = "Minimal";
   static constexpr Contract kContract = Contract::kExactlyOnce;
@@ -179,9 +185,11 @@ struct Minimal {
   static constexpr Mo order(Site s) noexcept {
     switch (s) {
       case Site::kOwnerRetract:
+      case Site::kThiefShrinkEnd:
       case Site::kLockRelease:
       case Site::kFrameStart:
       case Site::kFramePublishDone: return Mo::kRelease;
+      case Site::kOwnerReadEnd:
       case Site::kThiefAwaitTransient:
       case Site::kLockAcquire:
       case Site::kFrameAwaitStart:
