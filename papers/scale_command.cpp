@@ -124,14 +124,7 @@ int run_scale_command(int argc, char** argv) {
       cli.usage_error(e.what());
     }
     // ---- the measured sets and the constants ------------------------------------------------------------
-    std::vector<MeasuredSet> sets;
-    for (const auto& entry : std::filesystem::directory_iterator(o.study)) {
-      const auto file = entry.path() / "frontsteal.json";
-      if (entry.is_directory() && std::filesystem::exists(file)) {
-        sets.push_back(read_measured_set(file, entry.path().filename().string()));
-      }
-    }
-    std::sort(sets.begin(), sets.end(), [](const MeasuredSet& a, const MeasuredSet& b) { return a.name < b.name; });
+    const std::vector<MeasuredSet> sets = read_study(o.study);
     const auto cal =
         std::find_if(sets.begin(), sets.end(), [&](const MeasuredSet& s) { return s.name == o.calibrate_on; });
     if (cal == sets.end()) cli.usage_error("--calibrate-on: no set '" + o.calibrate_on + "' under " + o.study);

@@ -73,14 +73,8 @@ int run_validate_command(int argc, char** argv) {
     // Filled step by step; the rows point into run.sets, which is complete before the first row is made.
     ValidationRun run;
     run.machine = machine();
-    std::vector<MeasuredSet>& sets = run.sets;
-    for (const auto& entry : std::filesystem::directory_iterator(o.study)) {
-      const auto file = entry.path() / "frontsteal.json";
-      if (entry.is_directory() && std::filesystem::exists(file)) {
-        sets.push_back(read_measured_set(file, entry.path().filename().string()));
-      }
-    }
-    std::sort(sets.begin(), sets.end(), [](const MeasuredSet& a, const MeasuredSet& b) { return a.name < b.name; });
+    run.sets = read_study(o.study);
+    const std::vector<MeasuredSet>& sets = run.sets;
     const auto cal =
         std::find_if(sets.begin(), sets.end(), [&](const MeasuredSet& s) { return s.name == o.calibrate_on; });
     if (cal == sets.end()) cli.usage_error("--calibrate-on: no set '" + o.calibrate_on + "' under " + o.study);

@@ -77,6 +77,18 @@ MeasuredSet read_measured_set(const std::filesystem::path& file, const std::stri
   return s;
 }
 
+std::vector<MeasuredSet> read_study(const std::filesystem::path& study) {
+  std::vector<MeasuredSet> sets;
+  for (const auto& entry : std::filesystem::directory_iterator(study)) {
+    const auto file = entry.path() / "frontsteal.json";
+    if (entry.is_directory() && std::filesystem::exists(file)) {
+      sets.push_back(read_measured_set(file, entry.path().filename().string()));
+    }
+  }
+  std::sort(sets.begin(), sets.end(), [](const MeasuredSet& a, const MeasuredSet& b) { return a.name < b.name; });
+  return sets;
+}
+
 std::map<std::string, double> MeasuredAccount::shares_with_off_cpu() const {
   std::map<std::string, double> out = shares;
   const auto off = shares.find("off_cpu");

@@ -76,6 +76,10 @@ struct MeasuredSet {
 // naming the file and the missing key.
 MeasuredSet read_measured_set(const std::filesystem::path& json_file, const std::string& name);
 
+// Every measured set of a study folder: each subfolder holding a frontsteal.json, named by the subfolder, sorted
+// by name.
+std::vector<MeasuredSet> read_study(const std::filesystem::path& study);
+
 // The simulator's model of a registry scheduler; nullopt when it has none.
 std::optional<Model> model_of(const std::string& scheduler);
 

@@ -5,6 +5,7 @@
 // time is put back where the main job took it from.
 #include <catch2/catch.hpp>
 
+#include "tests/papers/hand_made_trace.hpp"
 #include "papers/scale.hpp"
 #include "papers/simulator.hpp"
 #include "schedulers/static_assignment.hpp"
@@ -14,17 +15,6 @@ using frontsteal::ItemId;
 using frontsteal::WorkerId;
 
 namespace {
-
-fp::CostTrace trace_of(std::vector<std::vector<double>> costs) {
-  fp::CostTrace t;
-  t.scene = "hand-made";
-  for (std::size_t i = 0; i < costs.at(0).size(); ++i) {
-    t.centres.push_back({static_cast<double>(i), 0, 0});
-    t.estimates.push_back(1);
-  }
-  t.cost_ns = std::move(costs);
-  return t;
-}
 
 fp::Overheads account_overheads() {
   fp::Overheads o;
@@ -42,7 +32,7 @@ double sum(const fp::SimulatedAccount& a) {
 }  // namespace
 
 TEST_CASE("simulated account: a static frame worked out by hand", "[papers][account]") {
-  const fp::CostTrace t = trace_of({{100, 200, 300, 400}});
+  const fp::CostTrace t = fp::testing::hand_made_trace({{100, 200, 300, 400}});
   const frontsteal::sched::Assignment lists{{0, 2}, {1, 3}};
   const fp::SimulationOptions so{.model = fp::Model::static_list, .workers = 2, .assignment = &lists};
   const fp::SimulatedRun run = fp::simulate(t, account_overheads(), so);
@@ -63,7 +53,7 @@ TEST_CASE("simulated account: a static frame worked out by hand", "[papers][acco
 TEST_CASE("simulated account: every model's terms add up to frame x P", "[papers][account]") {
   std::vector<std::vector<double>> costs(3, std::vector<double>(64, 10));
   for (std::size_t i = 0; i < 8; ++i) costs[1][i] = 500;  // a costly corner: steals and lock waits
-  const fp::CostTrace t = trace_of(costs);
+  const fp::CostTrace t = fp::testing::hand_made_trace(costs);
   fp::Overheads o = account_overheads();
   o.line_transfer_ns = 20;
   o.fence_ns = 5;
@@ -131,10 +121,10 @@ TEST_CASE("off-CPU time is put back into the terms it was taken from", "[papers]
 }
 
 TEST_CASE("the largest-item bound: no schedule of whole items ends a frame before its costliest item", "[papers]") {
-  const fp::CostTrace even = trace_of({{10, 10, 10, 10}});
+  const fp::CostTrace even = fp::testing::hand_made_trace({{10, 10, 10, 10}});
   CHECK(fp::critical_path_bound(even, 2) == Approx(1.0));
   CHECK(fp::critical_path_bound(even, 8) == Approx(0.5));  // 40 / 8 = 5 per worker, but an item takes 10
-  const fp::CostTrace skewed = trace_of({{30, 2, 2, 2}, {10, 10, 10, 10}});
+  const fp::CostTrace skewed = fp::testing::hand_made_trace({{30, 2, 2, 2}, {10, 10, 10, 10}});
   // P = 4: frame 0 ideal 9, bound 30; frame 1 ideal 10, bound 10: (9 + 10) / (30 + 10).
   CHECK(fp::critical_path_bound(skewed, 4) == Approx(19.0 / 40.0));
 }

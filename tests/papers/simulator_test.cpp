@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tests/papers/hand_made_trace.hpp"
 #include "papers/calibration.hpp"
 #include "papers/cost_trace.hpp"
 #include "papers/simulator.hpp"
@@ -14,17 +15,6 @@ namespace fp = frontsteal::papers;
 using frontsteal::ItemId;
 
 namespace {
-
-fp::CostTrace trace_of(std::vector<std::vector<double>> costs) {
-  fp::CostTrace t;
-  t.scene = "hand-made";
-  for (std::size_t i = 0; i < costs.at(0).size(); ++i) {
-    t.centres.push_back({static_cast<double>(i), 0, 0});
-    t.estimates.push_back(1);
-  }
-  t.cost_ns = std::move(costs);
-  return t;
-}
 
 // No scheduler costs at all: the models reduce to list scheduling of the item costs.
 fp::Overheads free_overheads() {
@@ -37,7 +27,7 @@ fp::Overheads free_overheads() {
 }  // namespace
 
 TEST_CASE("static model: the frame lasts as long as the most loaded list, plus the frame cost") {
-  const fp::CostTrace t = trace_of({{10, 20, 30, 40}, {1, 1, 1, 1}});
+  const fp::CostTrace t = fp::testing::hand_made_trace({{10, 20, 30, 40}, {1, 1, 1, 1}});
   fp::Overheads o = free_overheads();
   o.static_list = {.item_ns = 2, .frame_fixed_ns = 100, .second_worker_ns = 50};
   const frontsteal::sched::Assignment lists = {{0, 3}, {1, 2}};
@@ -49,7 +39,7 @@ TEST_CASE("static model: the frame lasts as long as the most loaded list, plus t
 }
 
 TEST_CASE("every model at P = 1 is the serial sum plus its per-item and per-frame costs") {
-  const fp::CostTrace t = trace_of({{5, 7, 11, 13, 17}});
+  const fp::CostTrace t = fp::testing::hand_made_trace({{5, 7, 11, 13, 17}});
   fp::Overheads o = free_overheads();
   o.queue = o.stealing = o.chase_lev = o.static_list = {.item_ns = 1, .frame_fixed_ns = 10, .second_worker_ns = 0};
   const auto lists = frontsteal::sched::round_robin_assignment(5, 1);
@@ -65,7 +55,7 @@ TEST_CASE("stealing: an idle worker takes the second half of a busy worker's lis
   // Worker 0's block holds all the expensive items; worker 1's block is free.
   std::vector<double> costs(8, 0);
   for (int i = 0; i < 4; ++i) costs[i] = 100;
-  const fp::CostTrace t = trace_of({costs, costs});
+  const fp::CostTrace t = fp::testing::hand_made_trace({costs, costs});
   const fp::Overheads o = free_overheads();
   const fp::SimulatedRun r = fp::simulate(t, o, {.model = fp::Model::stealing, .workers = 2});
   CHECK(r.audit_failures == 0);
@@ -80,7 +70,7 @@ TEST_CASE("stealing: an idle worker takes the second half of a busy worker's lis
 TEST_CASE("stealing: the audit catches a steal that never lowers the victim's End (negative control)") {
   std::vector<double> costs(64, 10);
   for (int i = 0; i < 32; ++i) costs[i] = 1000;
-  const fp::CostTrace t = trace_of({costs});
+  const fp::CostTrace t = fp::testing::hand_made_trace({costs});
   const fp::Overheads o = free_overheads();
   const fp::SimulatedRun sound = fp::simulate(t, o, {.model = fp::Model::stealing, .workers = 4});
   const fp::SimulatedRun planted =
@@ -91,7 +81,7 @@ TEST_CASE("stealing: the audit catches a steal that never lowers the victim's En
 
 TEST_CASE("queue: a saturated lock serializes the claims") {
   // 1000 free items, grain N/(100P) = 5 at P = 2: 200 acquisitions; each waiting one costs the handoff.
-  const fp::CostTrace t = trace_of({std::vector<double>(1000, 0)});
+  const fp::CostTrace t = fp::testing::hand_made_trace({std::vector<double>(1000, 0)});
   fp::Overheads o = free_overheads();
   o.lock_uncontended_ns = 10;
   o.lock_handoff_ns = 100;
@@ -105,7 +95,7 @@ TEST_CASE("queue: a saturated lock serializes the claims") {
 TEST_CASE("Chase-Lev and queue balance what round robin cannot") {
   std::vector<double> costs(400, 1);
   for (int i = 0; i < 100; ++i) costs[i * 4] = 400;  // every 4th item is expensive: round robin puts them on worker 0
-  const fp::CostTrace t = trace_of({costs});
+  const fp::CostTrace t = fp::testing::hand_made_trace({costs});
   fp::Overheads o = free_overheads();
   const auto rr = frontsteal::sched::round_robin_assignment(400, 4);
   const double static_ns =
@@ -121,7 +111,7 @@ TEST_CASE("Chase-Lev and queue balance what round robin cannot") {
 TEST_CASE("cost traces survive a round trip, and a truncated trace is refused with its line") {
   const auto dir = std::filesystem::temp_directory_path() / "frontsteal-trace-test";
   std::filesystem::create_directories(dir);
-  fp::CostTrace t = trace_of({{1, 2, 3}, {4, 5, 6}});
+  fp::CostTrace t = fp::testing::hand_made_trace({{1, 2, 3}, {4, 5, 6}});
   t.machine = "test machine";
   fp::write_cost_trace(t, dir / "t.txt");
   const fp::CostTrace back = fp::read_cost_trace(dir / "t.txt");
@@ -171,7 +161,7 @@ TEST_CASE("calibration files survive a round trip, and unknown keys are refused"
 
 TEST_CASE("stealing and Chase-Lev terminate when single items are left to steal") {
   // Free items and more workers than items: idle workers must not pass one item back and forth forever.
-  const fp::CostTrace t = trace_of({{0, 0, 0}, {5, 0, 0}, {0, 0, 9}});
+  const fp::CostTrace t = fp::testing::hand_made_trace({{0, 0, 0}, {5, 0, 0}, {0, 0, 9}});
   fp::Overheads o = free_overheads();
   o.line_transfer_ns = 1;
   for (fp::Model m : {fp::Model::stealing, fp::Model::chase_lev}) {
@@ -188,7 +178,7 @@ TEST_CASE("affinity: the penalty is charged exactly when an item changes worker,
   // Queue, P = 2, grain 1, no scheduler costs. Frame 0 (all 10): worker 0 runs {0, 2}, worker 1 {1, 3}; no
   // previous frame, no penalty. Frame 1: item 0 costs 30, so worker 1 runs {1, 2, 3}: item 2 moved (0 → 1) and
   // costs 10 × 1.5 = 15. Worker 1: 10 + 15 + 10 = 35; worker 0: 30. Path: 20 + 35.
-  const fp::CostTrace t = trace_of({{10, 10, 10, 10}, {30, 10, 10, 10}});
+  const fp::CostTrace t = fp::testing::hand_made_trace({{10, 10, 10, 10}, {30, 10, 10, 10}});
   fp::Overheads o = free_overheads();
   o.affinity_penalty = 0.5;
   const fp::SimulatedRun r = fp::simulate(t, o, {.model = fp::Model::queue, .workers = 2});
@@ -205,7 +195,7 @@ TEST_CASE("affinity: the penalty is charged exactly when an item changes worker,
 }
 
 TEST_CASE("affinity: lists that stay with their worker never pay - at P = 1 nothing ever moves") {
-  const fp::CostTrace t = trace_of({{10, 20, 30, 40}, {40, 30, 20, 10}, {5, 5, 5, 5}});
+  const fp::CostTrace t = fp::testing::hand_made_trace({{10, 20, 30, 40}, {40, 30, 20, 10}, {5, 5, 5, 5}});
   fp::Overheads o = free_overheads();
   o.affinity_penalty = 1.0;
   const auto rr = frontsteal::sched::round_robin_assignment(4, 2);
@@ -221,7 +211,7 @@ TEST_CASE("affinity: lists that stay with their worker never pay - at P = 1 noth
 
 TEST_CASE("interference: a slowed worker's items take longer - a slowdown per worker is required") {
   // Round robin at P = 2: worker 0 runs items 0 and 2 at half speed: 2 × (10 + 10) = 40; worker 1: 20.
-  const fp::CostTrace t = trace_of({{10, 10, 10, 10}});
+  const fp::CostTrace t = fp::testing::hand_made_trace({{10, 10, 10, 10}});
   const auto rr = frontsteal::sched::round_robin_assignment(4, 2);
   fp::SimulationOptions so{.model = fp::Model::static_list, .workers = 2, .assignment = &rr};
   so.worker_slowdown = {2.0, 1.0};
@@ -233,7 +223,7 @@ TEST_CASE("interference: a slowed worker's items take longer - a slowdown per wo
 }
 
 TEST_CASE("wake-up: worker w starts its frame w x wake_skew_ns late") {
-  const fp::CostTrace t = trace_of({{10, 10, 10, 10}});
+  const fp::CostTrace t = fp::testing::hand_made_trace({{10, 10, 10, 10}});
   const auto rr = frontsteal::sched::round_robin_assignment(4, 2);
   fp::Overheads o = free_overheads();
   o.wake_skew_ns = 3;
@@ -245,7 +235,7 @@ TEST_CASE("wake-up: worker w starts its frame w x wake_skew_ns late") {
 TEST_CASE("queue: a waiter sleeps and gets the lock lock_wake_ns after the holder's release") {
   // Two items of 10, grain 1. Worker 0 takes the lock at 0 for 5 and runs item 0 until 15. Worker 1 asks at 0,
   // sleeps, is granted at 5 + 7 = 12, holds for the hand-off 4 and runs item 1 from 16 to 26.
-  const fp::CostTrace t = trace_of({{10, 10}});
+  const fp::CostTrace t = fp::testing::hand_made_trace({{10, 10}});
   fp::Overheads o = free_overheads();
   o.lock_uncontended_ns = 5;
   o.lock_handoff_ns = 4;
@@ -263,7 +253,7 @@ TEST_CASE("queue: a running worker takes the lock while a sleeper wakes up (no c
   // (6-11) and runs item 1 to 12; at 12 it asks first (ties go to the lower worker): 12-17, item 2 to 18;
   // worker 1 finds the queue empty. Path 18. A lock reserved for the sleeper (the convoy) gives 28: worker 1
   // holds it 12-16, worker 0 sleeps at 6 and gets it at 16 + 7 = 23.
-  const fp::CostTrace t = trace_of({{1, 1, 1}});
+  const fp::CostTrace t = fp::testing::hand_made_trace({{1, 1, 1}});
   fp::Overheads o = free_overheads();
   o.lock_uncontended_ns = 5;
   o.lock_handoff_ns = 4;
