@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -51,23 +52,30 @@ TEST_CASE("one item in kStride is sampled, the same ones for the same seed", "[m
 }
 
 TEST_CASE("planted costs in the checks and between two items are measured at their size", "[measure][account]") {
+  // A measurement that another process preempts is off by its timeslice: attempts run until one lies within 25 %
+  // of the planted costs (a generous bound; on a quiet machine the first does).
   const std::uint32_t n = 20'000;
-  ms::ItemSampler sampler(n, 1, 1);
   const std::int64_t check_ns = 2000, gap_ns = 3000;
-  for (std::uint32_t id = 0; id < n; ++id) {
-    sampler.run(
-        id, 0, [&] { spin_ns(check_ns); }, [] {});
-    spin_ns(gap_ns);  // what a scheduler does between two items of this worker
+  bool measured = false;
+  for (int attempt = 0; attempt < 8 && !measured; ++attempt) {
+    ms::ItemSampler sampler(n, 1, 1);
+    for (std::uint32_t id = 0; id < n; ++id) {
+      sampler.run(
+          id, 0, [&] { spin_ns(check_ns); }, [] {});
+      spin_ns(gap_ns);  // what a scheduler does between two items of this worker
+    }
+    const ms::ItemSamples s = sampler.take_frame();
+    CHECK(s.items == sampler.sampled_count());
+    // Every sampled item's gap is closed by the worker's next item (the frame's last item has none after it).
+    CHECK(s.gaps_ns.size() + 1 >= s.items);
+    CHECK(s.gaps_ns.size() <= s.items);
+    const double direct_check = direct_ns(check_ns), direct_gap = direct_ns(gap_ns);
+    UNSCOPED_INFO("attempt " << attempt << ": checks " << s.checks_per_item_ns() << " ns against " << direct_check
+                             << ", gap " << s.gap_per_item_ns() << " ns against " << direct_gap);
+    measured = std::abs(s.checks_per_item_ns() - direct_check) <= 0.25 * direct_check &&
+               std::abs(s.gap_per_item_ns() - direct_gap) <= 0.25 * direct_gap;
   }
-  const ms::ItemSamples s = sampler.take_frame();
-  CHECK(s.items == sampler.sampled_count());
-  // Every sampled item's gap is closed by the worker's next item (the frame's last item has none after it).
-  CHECK(s.gaps_ns.size() + 1 >= s.items);
-  CHECK(s.gaps_ns.size() <= s.items);
-  const double direct_check = direct_ns(check_ns), direct_gap = direct_ns(gap_ns);
-  CAPTURE(s.checks_per_item_ns(), direct_check, s.gap_per_item_ns(), direct_gap);
-  CHECK(s.checks_per_item_ns() == Approx(direct_check).epsilon(0.25));
-  CHECK(s.gap_per_item_ns() == Approx(direct_gap).epsilon(0.25));
+  CHECK(measured);
 }
 
 TEST_CASE("the claim leaves out the largest 2 % of the gaps, and no gap stays open across frames",

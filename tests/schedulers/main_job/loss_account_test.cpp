@@ -175,12 +175,13 @@ TEST_CASE("the harness's clock sees a cost spent after the scheduler's inner run
 
 TEST_CASE("a spin planted between a worker's drain and its search leaves the account open",
           "[main-job][account][negative-control]") {
-  // The spin lands in every search that finds work; a frame without a successful steal has none, so frames run
-  // until two of them stole (under load a worker can wake too late to steal: the bound only ends a blind test).
+  // The spin lands in every search that finds work; a frame without a successful steal has none. Frames run until
+  // two that stole leave the account open (the generous bound only ends a blind test): under load a worker can
+  // wake too late to steal, and a frame stretched by other processes dilutes the spin's share below the bound.
   const ItemId n = 200;
   sc::StealingAdapter<fs::Fenced, SpinBeforeReadTimer> planted({.workers = 2, .items = n});
-  int frames_with_steals = 0;
-  for (int f = 0; f < 50 && frames_with_steals < 2; ++f) {
+  int frames_with_steals = 0, frames_open = 0;
+  for (int f = 0; f < 200 && frames_open < 2; ++f) {
     auto item = skewed_items(n);
     const mj::TimedFrame t = mj::time_frame(planted, item, 0);
     if (t.stats->totals().steals_succeeded == 0) continue;
@@ -188,10 +189,12 @@ TEST_CASE("a spin planted between a worker's drain and its search leaves the acc
     mj::AccountSums one;
     one.add_frame(*t.stats, t.frame_ns, {});
     const mj::LossAccount a = mj::make_account(one);
-    CAPTURE(f, a.share(Term::kUnaccounted));
-    CHECK(a.share(Term::kUnaccounted) > mj::kClosureBound);
+    UNSCOPED_INFO("frame " << f << ": unaccounted " << a.share(Term::kUnaccounted));
+    if (a.share(Term::kUnaccounted) <= mj::kClosureBound) continue;
     CHECK_FALSE(a.closes());
     CHECK(one.frames_open == 1);
+    ++frames_open;
   }
-  REQUIRE(frames_with_steals >= 1);
+  CAPTURE(frames_with_steals);
+  REQUIRE(frames_open == 2);
 }
