@@ -10,6 +10,7 @@
 #include <signal.h>
 #include <sys/mman.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -141,11 +142,14 @@ TEST_CASE("the probe runs its chain: no faster than 0.2 ns per dependent step", 
   CHECK(ns < 1e9);  // and it ends: under 1 us per step even on a loaded machine
 }
 
-// One try: a child runs 1-million-step probes back to back, writing each result; it is stopped for 300 ms
-// while it runs, resumed, and killed once the results after the stop are read. The largest result is returned:
-// the probe that was running when the stop came (unless the stop landed inside a write between two probes,
-// which a retry takes care of).
-// The child of one try, killed and reaped and its pipe closed on every way out (a failed REQUIRE included).
+// One try. A child runs one long probe (kLongProbeSteps, ~100 ms of CPU on an idle core) and writes its result.
+// The stop must land inside that probe, so the parent waits until the child has used 10 ms of CPU (the child does
+// nothing else before the probe, and the probe needs far more), stops it, waits until the kernel reports it
+// stopped, sleeps 300 ms by its own clock, and resumes it. Signalling the moment a short probe ends does not
+// work: on a loaded machine the writer of a result is preempted inside write() by the reader it woke, and a stop
+// sent then takes effect as the syscall returns, between two probes, every time. The try returns the probe's
+// total wall time and the stop's length as the parent's clock saw it; 0, 0 when the probe ended before the stop
+// (a parent starved for the whole probe), which a retry takes care of.
 struct ProbingChild {
   pid_t pid = -1;
   int results = -1;
@@ -158,7 +162,22 @@ struct ProbingChild {
   }
 };
 
-double largest_probe_across_a_stop() {
+constexpr std::uint64_t kLongProbeSteps = 50'000'000;
+
+double cpu_seconds_of(pid_t pid) {
+  clockid_t clock;
+  if (clock_getcpuclockid(pid, &clock) != 0) return -1;
+  timespec t{};
+  if (clock_gettime(clock, &t) != 0) return -1;
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+struct StoppedProbe {
+  double probe_total_ns = 0;
+  double stop_ns = 0;
+};
+
+StoppedProbe stop_a_long_probe() {
   int results[2];
   REQUIRE(pipe(results) == 0);
   ProbingChild child;
@@ -166,34 +185,39 @@ double largest_probe_across_a_stop() {
   child.pid = fork();
   if (child.pid == 0) {
     close(results[0]);
-    for (;;) {
-      const double ns = nz::probe_ns_per_million_steps(1'000'000);
-      if (write(results[1], &ns, sizeof ns) != static_cast<ssize_t>(sizeof ns)) _exit(0);
-    }
+    const double ns = nz::probe_ns_per_million_steps(kLongProbeSteps);
+    const ssize_t written = write(results[1], &ns, sizeof ns);
+    _exit(written == static_cast<ssize_t>(sizeof ns) ? 0 : 1);
   }
   close(results[1]);
   REQUIRE(child.pid > 0);
-  double ns = 0, largest = 0;
-  REQUIRE(read(results[0], &ns, sizeof ns) == static_cast<ssize_t>(sizeof ns));  // it is probing
+  // Inside the probe: 10 ms of the child's CPU spent (polled; bounded by 20 s of the parent's clock).
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (cpu_seconds_of(child.pid) < 0.010 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  REQUIRE(cpu_seconds_of(child.pid) >= 0.010);
   REQUIRE(kill(child.pid, SIGSTOP) == 0);
+  int status = 0;
+  const pid_t changed = waitpid(child.pid, &status, WUNTRACED);
+  REQUIRE(changed == child.pid);
+  if (!WIFSTOPPED(status)) return {};  // it had already finished and exited
+  const auto stopped = std::chrono::steady_clock::now();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const auto resumed = std::chrono::steady_clock::now();
   REQUIRE(kill(child.pid, SIGCONT) == 0);
-  // Blocking reads: the probe that was stopped reports once the child has had the CPU again, however long a
-  // loaded machine makes that. Everything it wrote before the stop comes first, and on a loaded machine that can
-  // be hundreds of results (this thread may wait long between its first read and the stop), so the reads are
-  // bounded by time, not by a count: the stopped probe's result is always reached.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (largest < 300e6 && std::chrono::steady_clock::now() < deadline) {
-    REQUIRE(read(results[0], &ns, sizeof ns) == static_cast<ssize_t>(sizeof ns));
-    largest = std::max(largest, ns);
-  }
-  return largest;  // the guard kills and reaps the child and closes the pipe
+  double ns = 0;
+  REQUIRE(read(results[0], &ns, sizeof ns) == static_cast<ssize_t>(sizeof ns));
+  const double stop_ns = std::chrono::duration<double, std::nano>(resumed - stopped).count();
+  return {ns * static_cast<double>(kLongProbeSteps) / 1e6, stop_ns};  // the guard reaps the child
 }
 
 TEST_CASE("the probe counts lost CPU: a probe stopped for 300 ms reports at least that", "[cpu_probe]") {
-  // 300 ms inside a 1-million-step probe is 300e6 ns per million steps, ~150 times a probe's own time on an
-  // idle core (and still ~30 times on a loaded one). Up to 5 tries (see above); each takes ~0.4 s.
-  double largest = 0;
-  for (int attempt = 0; attempt < 5 && largest < 300e6; ++attempt) largest = largest_probe_across_a_stop();
-  CHECK(largest >= 300e6);
+  // The stop is confirmed by the kernel (waitpid reports the child stopped) and timed by this process's clock,
+  // so the probe must report at least that long. A probe that read a CPU-time clock would report ~100 ms.
+  // Up to 5 tries, only for a probe that ended before the stop; each takes ~0.5 s on an idle core.
+  StoppedProbe seen;
+  for (int attempt = 0; attempt < 5 && seen.stop_ns == 0; ++attempt) seen = stop_a_long_probe();
+  INFO("probe " << seen.probe_total_ns / 1e6 << " ms in all, stopped for " << seen.stop_ns / 1e6 << " ms");
+  REQUIRE(seen.stop_ns >= 300e6);
+  CHECK(seen.probe_total_ns >= seen.stop_ns);
 }
