@@ -1,10 +1,13 @@
-// litmus_catalogue.hpp — the tests the axiomatic checker is validated on, each with its published verdict.
+// litmus_catalogue.hpp — the tests the axiomatic checker is validated on, each with its expected verdict and its
+// source.
 //
-// Two kinds of entry. AArch64 tests, transcribed from herd's catalogue (herdtools7, catalogue/aarch64/tests:
-// the programs and the verdicts of kinds.txt), are checked under ARMv8 alone. C++ tests (the RC11 paper's
-// examples, the classic shapes with C++ orders, and the fetch_add case of LLVM issue #69503) are checked under
-// RC11, RC11 without no-thin-air, and ARMv8 after the standard mapping (program.hpp). A verdict is "allowed"
-// when some consistent execution reaches the test's final state.
+// Two kinds of entry. AArch64 tests are checked under ARMv8 alone: transcribed from herd's catalogues
+// (herdtools7: catalogue/aarch64/tests and catalogue/aarch64-readers-guide/tests, the programs and the verdicts of
+// their kinds.txt), from Maranget, Sarkar and Sewell's ARM/POWER tutorial, and, for the few ordered-before clauses
+// no published test isolates, written here with the verdict derived by hand from the clause (their source says
+// so). C++ tests (the RC11 paper's examples, the classic shapes with C++ orders, and the fetch_add case of LLVM
+// issue #69503) are checked under RC11, RC11 without no-thin-air, and ARMv8 after the standard mapping
+// (program.hpp). A verdict is "allowed" when some consistent execution reaches the test's final state.
 #pragma once
 
 #include <array>
@@ -27,8 +30,9 @@ struct CatalogueEntry {
 
 std::vector<CatalogueEntry> litmus_catalogue();
 
-// The tests of herd's AArch64 kinds.txt that this checker's language cannot express (address, data or control
-// dependencies, compare-and-swap, conditional selects), named so the report can list what is not covered.
+// The tests of herd's AArch64 kinds.txt that this checker's language cannot express (a compare-and-swap that may
+// fail, compares against a loaded value or passes a dependency through its Rs register), named so the report can
+// list what is not covered.
 std::vector<std::string> untranscribed_aarch64_tests();
 
 }  // namespace frontsteal::axiomatic

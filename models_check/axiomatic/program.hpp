@@ -24,7 +24,9 @@ enum class Order : std::uint8_t { relaxed, acquire, release, acq_rel, seq_cst };
 // exchange: SWP / atomic exchange. cas: a compare-exchange on its success path (it reads `expected` and writes
 // `value`; a candidate in which it reads anything else is not an execution of this program).
 enum class Op : std::uint8_t { load, store, fetch_add, exchange, cas, fence };
-enum class ArmFence : std::uint8_t { none, full, load, store };  // DMB ISH (SY), DMB ISHLD, DMB ISHST
+// DMB ISH (SY), DMB ISHLD, DMB ISHST, and ISB (an instruction barrier: it orders only through dob's
+// (ctrl | addr;po);[ISB];po;[R] clause).
+enum class ArmFence : std::uint8_t { none, full, load, store, isb };
 
 struct ArmAccess {
   bool acquire = false;     // LDAR / LDADDA / LDADDAL: the read is an A
@@ -45,6 +47,10 @@ struct Instruction {
   // ARMv8 only: the value written depends on what the instruction at this index of the same thread read (a data
   // dependency, dob). The value itself stays `value`: the catalogue's tests make the dependency a no-op (w|1).
   int data_from = -1;
+  // ARMv8 only: the address this instruction accesses is computed from what the instruction at this index read (an
+  // address dependency: both its read and its write depend). The location stays `location`: the catalogue's tests
+  // add a value that is always 0 (EOR w,w,w).
+  int addr_from = -1;
   // ARMv8 only: this instruction and every later one of the thread run after a branch on what the instruction at
   // this index read (a control dependency; dob orders that read before each of those writes).
   int ctrl_from = -1;
