@@ -26,6 +26,11 @@ inline std::string cpu_model() {
 // The hardware threads this process may run on, at least 1 (std::thread::hardware_concurrency() may say 0).
 inline unsigned hardware_cores() { return std::max(1u, std::thread::hardware_concurrency()); }
 
+// "<cpu model>, N hardware threads": the machine a measured figure was made on, as results files name it.
+inline std::string machine_description() {
+  return cpu_model() + ", " + std::to_string(hardware_cores()) + " hardware threads";
+}
+
 // The 1-minute load average from /proc/loadavg, as written there, or "unknown": results files say how busy
 // the machine was while they were measured.
 inline std::string load_average_1min() {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "measure/machine_info.hpp"
 #include "reporting/table.hpp"
 #include "schedulers/static_assignment.hpp"
 
@@ -16,7 +17,7 @@ namespace frontsteal::papers {
 
 namespace sc = frontsteal::sched;
 
-std::string machine_line() { return cpu_model() + ", " + std::to_string(hardware_cores()) + " hardware threads"; }
+std::string machine_line() { return machine_description(); }
 
 std::string today() {
   const std::time_t now = std::time(nullptr);

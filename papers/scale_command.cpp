@@ -11,7 +11,6 @@
 #include <iostream>
 #include <map>
 #include <sstream>
-#include <thread>
 
 #include "measure/machine_info.hpp"
 #include "papers/scale.hpp"
@@ -46,10 +45,6 @@ struct Options {
   bool quiet = false;
 };
 
-std::string machine() {
-  return cpu_model() + ", " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " hardware threads";
-}
-
 std::string pct(double share, int digits = 1) { return report::fixed_text(100 * share, digits); }
 
 // "16:1.19,32:1.25" → {16: 1.19, 32: 1.25}; throws std::invalid_argument on a malformed entry.
@@ -76,7 +71,7 @@ CostTrace trace_of(const std::string& scene, const std::string& path, const std:
   if (std::filesystem::exists(file)) return read_cost_trace(file);
   say("recording the trace of " + scene + " along " + path + " (" + std::to_string(passes) + " serial passes)");
   PathWorkload wl(WorkloadOptions{.scene = scene, .path = path, .data_dir = FRONTSTEAL_DATA_DIR});
-  CostTrace t = record_cost_trace(wl, passes, machine(), FRONTSTEAL_GIT_COMMIT, true);
+  CostTrace t = record_cost_trace(wl, passes, machine_description(), FRONTSTEAL_GIT_COMMIT, true);
   write_cost_trace(t, file);
   return t;
 }
@@ -128,8 +123,8 @@ int run_scale_command(int argc, char** argv) {
     const auto cal =
         std::find_if(sets.begin(), sets.end(), [&](const MeasuredSet& s) { return s.name == o.calibrate_on; });
     if (cal == sets.end()) cli.usage_error("--calibrate-on: no set '" + o.calibrate_on + "' under " + o.study);
-    const Overheads base =
-        o.calibration.empty() ? calibrate(machine(), FRONTSTEAL_GIT_COMMIT, say) : read_overheads(o.calibration);
+    const Overheads base = o.calibration.empty() ? calibrate(machine_description(), FRONTSTEAL_GIT_COMMIT, say)
+                                                 : read_overheads(o.calibration);
     AccountConstants constants = account_constants(*cal, base);
     for (const auto& [p, f] : extra_inflation) constants.inflation[p] = f;
     if (!wake_override.empty()) {
@@ -153,7 +148,7 @@ int run_scale_command(int argc, char** argv) {
     std::vector<TermComparison> rows;
     for (const MeasuredSet& s : sets) {
       for (const MeasuredCell& c : s.cells) {
-        if (!c.account || !model_of(c.scheduler) || c.workers > std::max(1u, std::thread::hardware_concurrency())) {
+        if (!c.account || !model_of(c.scheduler) || c.workers > hardware_cores()) {
           continue;
         }
         TermComparison r{s.name, c.scheduler, c.workers, comparable_shares(*c.account), {}, {}};
@@ -180,7 +175,7 @@ int run_scale_command(int argc, char** argv) {
 
     // ---- the report -----------------------------------------------------------------------------------------------
     report::Json js = report::document(kProgram, 1, "simulated", FRONTSTEAL_GIT_COMMIT);
-    js["machine"] = machine();
+    js["machine"] = machine_description();
     js["calibration_set"] = cal->name;
     js["trace_scale"] = trace_scale;
     js["constants"] = {{"checks_per_item_ns", constants.overheads.checks_ns},
@@ -198,8 +193,8 @@ int run_scale_command(int argc, char** argv) {
 
     std::ostringstream md;
     md << "# The loss account, simulated: validated term by term, then predicted beyond the machine\n\n"
-       << "Machine: " << machine() << ". Commit " << FRONTSTEAL_GIT_COMMIT << ". Measured sets: the folders of `"
-       << std::filesystem::path(o.study).filename().string()
+       << "Machine: " << machine_description() << ". Commit " << FRONTSTEAL_GIT_COMMIT
+       << ". Measured sets: the folders of `" << std::filesystem::path(o.study).filename().string()
        << "` (the main job's frontsteal.json, schema 4). **Calibration set: " << cal->name
        << "**: the only measured accounts the model sees. Every other set is held out. Everything below marked "
           "SIMULATED is the simulator's; MEASURED is the main job's.\n\n"

@@ -6,10 +6,11 @@
 // set; predict every cell with a model (validation.hpp) at the --threads counts; tabulate the errors.
 #include "papers/validate_command.hpp"
 
+#include "measure/machine_info.hpp"
+
 #include <algorithm>
 #include <iostream>
 #include <map>
-#include <thread>
 
 #include "papers/validation.hpp"
 #include "papers/validation_report.hpp"
@@ -40,10 +41,6 @@ struct Options {
   bool quiet = false;
 };
 
-std::string machine() {
-  return cpu_model() + ", " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " hardware threads";
-}
-
 }  // namespace
 
 int run_validate_command(int argc, char** argv) {
@@ -72,7 +69,7 @@ int run_validate_command(int argc, char** argv) {
     // ---- the measured sets ------------------------------------------------------------------------------
     // Filled step by step; the rows point into run.sets, which is complete before the first row is made.
     ValidationRun run;
-    run.machine = machine();
+    run.machine = machine_description();
     run.sets = read_study(o.study);
     const std::vector<MeasuredSet>& sets = run.sets;
     const auto cal =
@@ -86,7 +83,7 @@ int run_validate_command(int argc, char** argv) {
     if (!o.calibration.empty()) {
       ov = read_overheads(o.calibration);
     } else {
-      ov = calibrate(machine(), FRONTSTEAL_GIT_COMMIT, say);
+      ov = calibrate(machine_description(), FRONTSTEAL_GIT_COMMIT, say);
     }
     // ---- traces (and the affinity penalty, on the calibration set's path) ----------------------------------
     const std::filesystem::path trace_dir =
@@ -106,7 +103,7 @@ int run_validate_command(int argc, char** argv) {
         traces[s.path] = read_cost_trace(file);
       } else {
         say("recording the trace of " + s.path + " (" + std::to_string(o.passes) + " serial passes, median)");
-        traces[s.path] = record_cost_trace(*wl, o.passes, machine(), FRONTSTEAL_GIT_COMMIT, true);
+        traces[s.path] = record_cost_trace(*wl, o.passes, machine_description(), FRONTSTEAL_GIT_COMMIT, true);
         write_cost_trace(traces[s.path], file);
       }
       if (need_affinity) {

