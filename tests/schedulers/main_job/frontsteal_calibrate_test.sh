@@ -65,7 +65,6 @@ for r in doc["results"]:
 print(f"--instance-frames {frames}: instances as expected")
 PY
   done
-PY
   "$summary" "$out/fast/frontsteal-calibration.json" --long "$out/fast/frontsteal-calibration.json" --rounds 4 \
     --experiments 20 --out "$out/summary" > "$out/summary.log" 2>&1 || { echo "FAIL: summary"; cat "$out/summary.log"; exit 1; }
   grep -q 'P=2 A/A twin' "$out/summary/calibration.md" && grep -q 'Resampled: 20 experiments of 4 rounds' "$out/summary/calibration.md" ||
