@@ -2,7 +2,7 @@
 // the others: dropping it changes the consistency of no candidate execution of the catalogue's AArch64 programs,
 // of the C++ ones and the protocol's programs after the mapping, or of random two-thread AArch64 programs (the
 // claim behind implied_by_other_clauses()). The same comparison does tell a clause that matters (the planted
-// check: ctrl;[W] dropped, and the internal axiom's fr). Fixed seeds, so every run explores the same programs.
+// check: ctrl;[W], DMB.FULL or the internal axiom's fr dropped). Fixed seeds, so every run explores the same programs.
 #include <catch2/catch.hpp>
 
 #include <random>
