@@ -40,17 +40,7 @@ CLI::Validator search_validator() {
 
 }  // namespace
 
-std::vector<PolicyTable> known_policies() {
-  return {table_of<SeqCst>(),
-          table_of<Paper>(),
-          table_of<Fenced>(),
-          table_of<Asymmetric>(),
-          table_of<Minimal>(),
-          table_of<BrokenSkipsReread>(),
-          table_of<BrokenNoTransient>(),
-          table_of<BrokenJoinsLate>(),
-          table_of<BrokenShareLowerBound>()};
-}
+std::vector<PolicyTable> known_policies() { return known_stealing_policies(); }
 
 std::optional<PolicyTable> policy_by_name(std::string_view name) {
   for (auto& p : known_policies()) {

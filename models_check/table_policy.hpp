@@ -63,6 +63,19 @@ struct TablePolicy {
   static Defect defects() noexcept { return current_table().defects; }
 };
 
+// The stealing protocol's policies and negative controls, as tables: what every checker of core/ runs.
+inline std::vector<PolicyTable> known_stealing_policies() {
+  return {table_of<SeqCst>(),
+          table_of<Paper>(),
+          table_of<Fenced>(),
+          table_of<Asymmetric>(),
+          table_of<Minimal>(),
+          table_of<BrokenSkipsReread>(),
+          table_of<BrokenNoTransient>(),
+          table_of<BrokenJoinsLate>(),
+          table_of<BrokenShareLowerBound>()};
+}
+
 // One-step weakenings, weakest last: loads seq_cst > acquire > relaxed; stores seq_cst > release > relaxed;
 // read-modify-writes seq_cst > acq_rel > {acquire, release} > relaxed; fences seq_cst > acq_rel >
 // {acquire, release} > none, and an asymmetric or compiler fence > none.

@@ -34,22 +34,30 @@ struct Event {
   bool is_rmw_part = false;
 };
 
-struct Execution {
-  const LitmusTest* test = nullptr;
+// One execution over a set type (relation.hpp): EventSet for litmus programs, WideSet for the execution graphs of
+// whole protocol runs (models_check/graph/). The models (models.hpp) read only these members.
+template <class Set>
+struct BasicExecution {
+  using Rel = BasicRelation<Set>;
+  const LitmusTest* test = nullptr;  // the litmus program, when there is one (printing only)
   std::vector<Event> events;
   int event_count = 0;
   // Fixed by the program:
-  Relation po;   // program order (transitive; the initial writes are not in it)
-  Relation rmw;  // a fetch_add's read → its write
-  Relation same_location;
-  EventSet reads = 0, writes = 0, fences = 0, initial = 0;
+  Rel po;   // program order (transitive; the initial writes are not in it)
+  Rel rmw;  // a fetch_add's read → its write
+  Rel same_location;
+  Set reads{}, writes{}, fences{}, initial{};
+  // ARMv8's dependencies, read → dependent event: data (the read of instruction data_from → the write that uses
+  // its value), addr (the read of instruction addr_from → the accesses whose address it computes) and ctrl (the
+  // read a branch tested → every event at or after the instruction that names it).
+  Rel addr, data, ctrl;
   // Chosen per candidate:
-  Relation rf, co;
+  Rel rf, co;
   std::vector<int> value;  // per event: the value read or written (fences: 0)
 
   bool same_thread(int a, int b) const { return events[a].thread == events[b].thread && events[a].thread >= 0; }
-  Relation internal() const {
-    Relation r(event_count);
+  Rel internal() const {
+    Rel r(event_count);
     for (int a = 0; a < event_count; ++a) {
       for (int b = 0; b < event_count; ++b) {
         if (same_thread(a, b)) r.add(a, b);
@@ -57,12 +65,13 @@ struct Execution {
     }
     return r;
   }
-  Relation external() const { return Relation::product(event_count, all(), all()).minus(internal()); }
-  Relation fr() const {  // from-reads: a read → every write co-after the one it read from
-    return rf.inverse().then(co).minus(Relation::identity(event_count, all()));
+  Rel external() const { return Rel::product(event_count, all(), all()).minus(internal()); }
+  Rel fr() const {  // from-reads: a read → every write co-after the one it read from
+    return rf.inverse().then(co).minus(Rel::identity(event_count, all()));
   }
-  EventSet all() const { return event_count == kMaxEvents ? ~EventSet{0} : bit(event_count) - 1; }
+  Set all() const { return first<Set>(event_count); }
 };
+using Execution = BasicExecution<EventSet>;
 
 // The program's events and fixed relations (rf, co and values are filled per candidate).
 inline Execution events_of(const LitmusTest& test) {
@@ -105,6 +114,28 @@ inline Execution events_of(const LitmusTest& test) {
       if (ea.thread >= 0 && ea.thread == eb.thread && a < b) x.po.add(a, b);
     }
     if (ea.is_rmw_part && ea.kind == EventKind::read) x.rmw.add(a, a + 1);
+  }
+  x.addr = Relation(n), x.data = Relation(n), x.ctrl = Relation(n);
+  const auto read_of = [&](int thread, int index) {
+    for (int r = 0; r < n; ++r) {
+      if (x.events[r].kind == EventKind::read && x.events[r].thread == thread && x.events[r].index == index) return r;
+    }
+    return -1;
+  };
+  for (int e = 0; e < n; ++e) {
+    const Event& ev = x.events[e];
+    if (ev.instruction == nullptr) continue;
+    if (ev.kind == EventKind::write && ev.instruction->data_from >= 0) {
+      if (const int r = read_of(ev.thread, ev.instruction->data_from); r >= 0) x.data.add(r, e);
+    }
+    if (ev.kind != EventKind::fence && ev.instruction->addr_from >= 0) {
+      if (const int r = read_of(ev.thread, ev.instruction->addr_from); r >= 0) x.addr.add(r, e);
+    }
+    for (int earlier = 0; earlier <= ev.index; ++earlier) {
+      const int branch_on = test.threads[ev.thread][earlier].ctrl_from;
+      if (branch_on < 0) continue;
+      if (const int r = read_of(ev.thread, branch_on); r >= 0) x.ctrl.add(r, e);
+    }
   }
   return x;
 }

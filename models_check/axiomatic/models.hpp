@@ -105,10 +105,11 @@ inline std::string_view implied_by_other_clauses(ModelDefect d) {
 
 namespace detail {
 
-inline EventSet events_where(const Execution& x, auto&& predicate) {
-  EventSet s = 0;
+template <class X>
+inline auto events_where(const X& x, auto&& predicate) {
+  decltype(x.reads) s{};
   for (int e = 0; e < x.event_count; ++e) {
-    if (predicate(x.events[e])) s |= bit(e);
+    if (predicate(x.events[e])) insert(s, e);
   }
   return s;
 }
@@ -127,61 +128,78 @@ inline bool releases(const Event& e) {
 }
 inline bool seq_cst(const Event& e) { return e.instruction != nullptr && e.instruction->order == Order::seq_cst; }
 
+// RC11's program order: the initial writes happen before everything a thread does.
+template <class X>
+inline auto rc11_po(const X& x) {
+  return x.po | X::Rel::product(x.event_count, x.initial, x.all() & ~x.initial);
+}
+
 }  // namespace detail
 
-// RC11, with or without no-thin-air.
-inline bool rc11_consistent(const Execution& x, bool no_thin_air, ModelDefect defect = ModelDefect::none) {
+// RC11's happens-before, hb = (po ∪ sw)+ (the header's rs and sw).
+template <class X>
+inline typename X::Rel rc11_happens_before(const X& x, ModelDefect defect = ModelDefect::none) {
+  using Rel = typename X::Rel;
   const int n = x.event_count;
-  const EventSet all = x.all();
-  const Relation id = Relation::identity(n, all);
-  // The initial writes happen before everything a thread does.
-  const Relation po = x.po | Relation::product(n, x.initial, all & ~x.initial);
-  const Relation po_loc = po & x.same_location;
-  const Relation fr = x.fr();
-  const EventSet rel = detail::events_where(x, detail::releases);
-  const EventSet acq = detail::events_where(x, detail::acquires);
-  const EventSet sc = detail::events_where(x, detail::seq_cst);
-  const EventSet F = x.fences, R = x.reads, W = x.writes;
-
-  const Relation rs = po_loc.maybe().restrict(W, W).then(x.rf.then(x.rmw).star());
-  Relation sw(n);
+  const Rel id = Rel::identity(n, x.all());
+  const Rel po = detail::rc11_po(x);
+  const Rel po_loc = po & x.same_location;
+  const auto rel = detail::events_where(x, detail::releases);
+  const auto acq = detail::events_where(x, detail::acquires);
+  const auto F = x.fences, R = x.reads, W = x.writes;
+  const Rel rs = po_loc.maybe().restrict(W, W).then(x.rf.then(x.rmw).star());
+  Rel sw(n);
   if (defect == ModelDefect::rc11_sw_without_fences) {
-    sw = Relation::identity(n, rel).then(rs).then(x.rf).then(Relation::identity(n, R & acq));
+    sw = Rel::identity(n, rel).then(rs).then(x.rf).then(Rel::identity(n, R & acq));
   } else {
-    const Relation fence_before = id | Relation::identity(n, F).then(po);
-    const Relation fence_after = id | po.then(Relation::identity(n, F));
-    sw = Relation::identity(n, rel)
+    const Rel fence_before = id | Rel::identity(n, F).then(po);
+    const Rel fence_after = id | po.then(Rel::identity(n, F));
+    sw = Rel::identity(n, rel)
              .then(fence_before)
              .then(rs)
              .then(x.rf)
-             .then(Relation::identity(n, R))
+             .then(Rel::identity(n, R))
              .then(fence_after)
-             .then(Relation::identity(n, acq));
+             .then(Rel::identity(n, acq));
   }
-  const Relation hb = (po | sw).plus();
-  const Relation eco = (defect == ModelDefect::rc11_eco_without_fr ? (x.rf | x.co) : (x.rf | x.co | fr)).plus();
+  return (po | sw).plus();
+}
+
+// RC11, with or without no-thin-air.
+template <class X>
+inline bool rc11_consistent(const X& x, bool no_thin_air, ModelDefect defect = ModelDefect::none) {
+  using Rel = typename X::Rel;
+  const int n = x.event_count;
+  const Rel po = detail::rc11_po(x);
+  const Rel fr = x.fr();
+  const auto sc = detail::events_where(x, detail::seq_cst);
+  const auto F = x.fences;
+  const Rel hb = rc11_happens_before(x, defect);
+  const Rel eco = (defect == ModelDefect::rc11_eco_without_fr ? (x.rf | x.co) : (x.rf | x.co | fr)).plus();
 
   if (!hb.then(eco.maybe()).irreflexive()) return false;  // coherence
   if (!(x.rmw & fr.then(x.co)).empty()) return false;     // atomicity
-  const Relation po_other_loc = po.minus(x.same_location);
-  const Relation scb = po | po_other_loc.then(hb).then(po_other_loc) | (hb & x.same_location) | x.co | fr;
-  const Relation sc_id = Relation::identity(n, sc & ~F), scf_id = Relation::identity(n, sc & F);
-  const Relation psc_base = (sc_id | scf_id.then(hb.maybe())).then(scb).then(sc_id | hb.maybe().then(scf_id));
-  const Relation psc_f = scf_id.then(hb | hb.then(eco).then(hb)).then(scf_id);
+  const Rel po_other_loc = po.minus(x.same_location);
+  const Rel scb = po | po_other_loc.then(hb).then(po_other_loc) | (hb & x.same_location) | x.co | fr;
+  const Rel sc_id = Rel::identity(n, sc & ~F), scf_id = Rel::identity(n, sc & F);
+  const Rel psc_base = (sc_id | scf_id.then(hb.maybe())).then(scb).then(sc_id | hb.maybe().then(scf_id));
+  const Rel psc_f = scf_id.then(hb | hb.then(eco).then(hb)).then(scf_id);
   if (!(psc_base | psc_f).acyclic()) return false;          // SC
   if (no_thin_air && !(po | x.rf).acyclic()) return false;  // no-thin-air
   return true;
 }
 
 // ARMv8's multicopy-atomic axiomatic model, on the instructions' ARMv8 view.
-inline bool armv8_consistent(const Execution& x, ModelDefect defect = ModelDefect::none) {
+template <class X>
+inline bool armv8_consistent(const X& x, ModelDefect defect = ModelDefect::none) {
+  using Rel = typename X::Rel;
   const int n = x.event_count;
-  const Relation po = x.po;  // initial writes are in no thread
-  const Relation po_loc = po & x.same_location;
-  const Relation fr = x.fr();
-  const Relation internal = x.internal(), external = x.external();
+  const Rel& po = x.po;  // initial writes are in no thread
+  const Rel po_loc = po & x.same_location;
+  const Rel fr = x.fr();
+  const Rel internal = x.internal(), external = x.external();
 
-  const Relation co_internal_check =
+  const Rel co_internal_check =
       defect == ModelDefect::armv8_internal_without_fr ? (po_loc | x.co | x.rf) : (po_loc | x.co | fr | x.rf);
   if (!co_internal_check.acyclic()) return false;  // internal visibility
 
@@ -189,52 +207,26 @@ inline bool armv8_consistent(const Execution& x, ModelDefect defect = ModelDefec
     return detail::events_where(
         x, [&](const Event& e) { return e.instruction != nullptr && predicate(*e.instruction, e); });
   };
-  const EventSet A =
-      arm([](const Instruction& in, const Event& e) { return e.kind == EventKind::read && in.arm.acquire; });
-  const EventSet Q =
+  const auto A = arm([](const Instruction& in, const Event& e) { return e.kind == EventKind::read && in.arm.acquire; });
+  const auto Q =
       arm([](const Instruction& in, const Event& e) { return e.kind == EventKind::read && in.arm.acquire_pc; });
-  const EventSet L =
+  const auto L =
       arm([](const Instruction& in, const Event& e) { return e.kind == EventKind::write && in.arm.release; });
-  const EventSet ordered_reads =
+  const auto ordered_reads =
       arm([](const Instruction& in, const Event& e) { return e.kind == EventKind::read && !in.arm.result_unused; });
-  const EventSet dmb_full = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::full; });
-  const EventSet dmb_ld = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::load; });
-  const EventSet dmb_st = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::store; });
-  const EventSet W = x.writes;
+  const auto dmb_full = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::full; });
+  const auto dmb_ld = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::load; });
+  const auto dmb_st = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::store; });
+  const auto isb = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::isb; });
+  const auto W = x.writes, R = x.reads;
 
-  const Relation obs = (x.rf & external) | (x.co & external) | (fr & external);
-  const Relation coi = x.co & internal, rfi = x.rf & internal;
-  const auto is = [&](EventSet s) { return Relation::identity(n, s); };
+  const Rel obs = (x.rf & external) | (x.co & external) | (fr & external);
+  const Rel coi = x.co & internal, rfi = x.rf & internal;
+  const auto is = [&](const auto& s) { return Rel::identity(n, s); };
   const auto keep = [&](ModelDefect clause) { return defect != clause; };
+  const Rel &addr = x.addr, &data = x.data, &ctrl = x.ctrl;
 
-  // The program's dependencies, read → dependent event: data (the read of instruction data_from → the write that
-  // uses its value), addr (the read of instruction addr_from → the accesses whose address it computes) and ctrl
-  // (the read a branch tested → every event at or after the instruction that names it).
-  Relation addr(n), data(n), ctrl(n);
-  const auto read_of = [&](int thread, int index) {
-    for (int r = 0; r < n; ++r) {
-      if (x.events[r].kind == EventKind::read && x.events[r].thread == thread && x.events[r].index == index) return r;
-    }
-    return -1;
-  };
-  for (int e = 0; e < n; ++e) {
-    const Event& ev = x.events[e];
-    if (ev.instruction == nullptr) continue;
-    if (ev.kind == EventKind::write && ev.instruction->data_from >= 0) {
-      if (const int r = read_of(ev.thread, ev.instruction->data_from); r >= 0) data.add(r, e);
-    }
-    if (ev.kind != EventKind::fence && ev.instruction->addr_from >= 0) {
-      if (const int r = read_of(ev.thread, ev.instruction->addr_from); r >= 0) addr.add(r, e);
-    }
-    for (int earlier = 0; earlier <= ev.index; ++earlier) {
-      const int branch_on = x.test->threads[ev.thread][earlier].ctrl_from;
-      if (branch_on < 0) continue;
-      if (const int r = read_of(ev.thread, branch_on); r >= 0) ctrl.add(r, e);
-    }
-  }
-  const EventSet isb = arm([](const Instruction& in, const Event&) { return in.arm.fence == ArmFence::isb; });
-  const EventSet R = x.reads;
-  Relation dob(n);
+  Rel dob(n);
   if (keep(ModelDefect::armv8_dob_without_addr_data)) dob = dob | addr | data;
   if (keep(ModelDefect::armv8_dob_without_ctrl_write)) dob = dob | ctrl.then(is(W));
   if (keep(ModelDefect::armv8_dob_without_isb)) dob = dob | (ctrl | addr.then(po)).then(is(isb)).then(po).then(is(R));
@@ -242,11 +234,11 @@ inline bool armv8_consistent(const Execution& x, ModelDefect defect = ModelDefec
   if (keep(ModelDefect::armv8_dob_without_dependency_coi)) dob = dob | (ctrl | data).then(coi);
   if (keep(ModelDefect::armv8_dob_without_dependency_rfi)) dob = dob | (addr | data).then(rfi);
 
-  Relation aob(n);
+  Rel aob(n);
   if (keep(ModelDefect::armv8_aob_without_rmw)) aob = aob | x.rmw;
   if (keep(ModelDefect::armv8_aob_without_rfi_acquire)) aob = aob | is(x.rmw.range()).then(rfi).then(is(A | Q));
 
-  Relation bob(n);
+  Rel bob(n);
   if (keep(ModelDefect::armv8_bob_without_dmb_full)) bob = bob | po.then(is(dmb_full)).then(po);
   if (keep(ModelDefect::armv8_bob_without_acq_rel_amo)) bob = bob | po.then(is(A)).then(x.rmw).then(is(L)).then(po);
   if (keep(ModelDefect::armv8_bob_without_release_acquire)) bob = bob | is(L).then(po).then(is(A));
@@ -260,7 +252,8 @@ inline bool armv8_consistent(const Execution& x, ModelDefect defect = ModelDefec
   return true;
 }
 
-inline bool consistent(const Execution& x, Model m, ModelDefect defect = ModelDefect::none) {
+template <class X>
+inline bool consistent(const X& x, Model m, ModelDefect defect = ModelDefect::none) {
   switch (m) {
     case Model::rc11: return rc11_consistent(x, true, defect);
     case Model::rc11_without_nta: return rc11_consistent(x, false, defect);

@@ -81,31 +81,35 @@ struct LitmusTest {
   std::vector<int> initial;  // initial value per location; missing ones are 0
 };
 
-// The standard C++ → ARMv8 mapping (above), applied to every instruction's C++ order. `use_stadd`: fetch_adds
-// whose result is unused and whose order has no acquire become ST<OP> (what LLVM emits for them).
-// `acquire_pc`: acquire (not seq_cst) loads become LDAPR, the RCpc mapping compilers use from ARMv8.3.
+// The standard C++ → ARMv8 mapping (above) of one instruction's C++ order. `use_stadd`: a fetch_add whose result is
+// unused and whose order has no acquire becomes ST<OP> (what LLVM emits for it). `acquire_pc`: an acquire (not
+// seq_cst) load becomes LDAPR, the RCpc mapping compilers use from ARMv8.3.
+inline ArmAccess armv8_view(const Instruction& in, bool use_stadd = true, bool acquire_pc = false) {
+  const bool acq = in.order == Order::acquire || in.order == Order::acq_rel || in.order == Order::seq_cst;
+  const bool rel = in.order == Order::release || in.order == Order::acq_rel || in.order == Order::seq_cst;
+  ArmAccess arm;
+  switch (in.op) {
+    case Op::load:
+      arm.acquire = acq && !(acquire_pc && in.order == Order::acquire);
+      arm.acquire_pc = acquire_pc && in.order == Order::acquire;
+      break;
+    case Op::store: arm.release = rel; break;
+    case Op::fetch_add:
+    case Op::exchange:
+    case Op::cas:
+      arm.acquire = acq;
+      arm.release = rel;
+      arm.result_unused = use_stadd && in.reg < 0 && !acq && in.op != Op::cas;  // CAS has no ST form
+      break;
+    case Op::fence: arm.fence = in.order == Order::acquire ? ArmFence::load : ArmFence::full; break;
+  }
+  return arm;
+}
+
+// The mapping applied to every instruction of a program.
 inline LitmusTest compile_to_armv8(LitmusTest test, bool use_stadd = true, bool acquire_pc = false) {
   for (auto& thread : test.threads) {
-    for (Instruction& in : thread) {
-      const bool acq = in.order == Order::acquire || in.order == Order::acq_rel || in.order == Order::seq_cst;
-      const bool rel = in.order == Order::release || in.order == Order::acq_rel || in.order == Order::seq_cst;
-      in.arm = {};
-      switch (in.op) {
-        case Op::load:
-          in.arm.acquire = acq && !(acquire_pc && in.order == Order::acquire);
-          in.arm.acquire_pc = acquire_pc && in.order == Order::acquire;
-          break;
-        case Op::store: in.arm.release = rel; break;
-        case Op::fetch_add:
-        case Op::exchange:
-        case Op::cas:
-          in.arm.acquire = acq;
-          in.arm.release = rel;
-          in.arm.result_unused = use_stadd && in.reg < 0 && !acq && in.op != Op::cas;  // CAS has no ST form
-          break;
-        case Op::fence: in.arm.fence = in.order == Order::acquire ? ArmFence::load : ArmFence::full; break;
-      }
-    }
+    for (Instruction& in : thread) in.arm = armv8_view(in, use_stadd, acquire_pc);
   }
   return test;
 }
