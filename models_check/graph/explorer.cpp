@@ -323,19 +323,13 @@ class Explorer {
     g.events[read].value = g.events[write].value;
   }
 
-  // A new read: one branch per consistent write; this run continues with the coherence-latest.
-  Value add_read(GraphEvent e) {
-    const int id = g_.add(e);
-    result_.largest_graph = std::max(result_.largest_graph, g_.events.size());
-    const std::vector<int>& co_order = g_.locations[static_cast<std::size_t>(e.location)].co;
-    // Coherence with the thread's own past (po-loc; both models require it): nothing older than what this thread
-    // already read or wrote at the location. A cheap filter; the model decides the rest.
-    const std::vector<int> candidates(co_order.begin() + seen_at(current_, e.location, id), co_order.end());
-    std::vector<int> ok;
-    const CoherenceFilter filter(g_);
-    for (int w : candidates) {
-      if (filter.read_ok(id, w)) {
-        ok.push_back(w);
+  // The options the filter lets through; none (the prefix was inconsistent after all): the run is abandoned.
+  template <class T, class Pass>
+  std::vector<T> passing(const std::vector<T>& options, Pass&& pass) {
+    std::vector<T> ok;
+    for (const T& option : options) {
+      if (pass(option)) {
+        ok.push_back(option);
       } else {
         ++result_.inconsistent;
       }
@@ -344,6 +338,19 @@ class Explorer {
       dead_ = true;
       leave_thread(ThreadState::blocked);
     }
+    return ok;
+  }
+
+  // A new read: one branch per consistent write; this run continues with the coherence-latest.
+  Value add_read(GraphEvent e) {
+    const int id = g_.add(e);
+    result_.largest_graph = std::max(result_.largest_graph, g_.events.size());
+    const std::vector<int>& co_order = g_.locations[static_cast<std::size_t>(e.location)].co;
+    // Coherence with the thread's own past (po-loc; both models require it): nothing older than what this thread
+    // already read or wrote at the location. A cheap filter; the model decides the rest.
+    const std::vector<int> candidates(co_order.begin() + seen_at(current_, e.location, id), co_order.end());
+    const CoherenceFilter filter(g_);
+    const std::vector<int> ok = passing(candidates, [&](int w) { return filter.read_ok(id, w); });
     for (std::size_t i = 0; i + 1 < ok.size(); ++i) {
       Graph alternative = g_;
       set_rf(alternative, id, ok[i]);
@@ -384,19 +391,8 @@ class Explorer {
       for (std::size_t p = static_cast<std::size_t>(seen_at(t, e.location, id)) + 1; p <= co.size(); ++p)
         places.push_back(p);
     }
-    std::vector<std::size_t> ok;
     const CoherenceFilter filter(g_);
-    for (std::size_t p : places) {
-      if (filter.write_ok(id, p)) {
-        ok.push_back(p);
-      } else {
-        ++result_.inconsistent;
-      }
-    }
-    if (ok.empty()) {
-      dead_ = true;
-      leave_thread(ThreadState::blocked);
-    }
+    const std::vector<std::size_t> ok = passing(places, [&](std::size_t p) { return filter.write_ok(id, p); });
     for (std::size_t i = 0; i + 1 < ok.size(); ++i) {
       Graph alternative = g_;
       std::vector<int> placed = co;
