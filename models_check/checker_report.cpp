@@ -15,7 +15,8 @@ CheckerReport::CheckerReport(std::string program, std::string out, bool historie
     : json(report::document(program, 2, "model-checked (bounded search)", FRONTSTEAL_GIT_COMMIT)),
       program_(std::move(program)),
       out_(std::move(out)),
-      dir_(program_, out_) {
+      dir_(program_, out_),
+      histories_(histories) {
   if (histories) std::filesystem::create_directories(dir_.file("histories"));
   started_ = std::chrono::steady_clock::now();
 }
@@ -29,9 +30,10 @@ int CheckerReport::close(std::string_view stem, bool all_as_expected, bool quiet
   const double run_seconds = seconds();
   json["all_as_expected"] = all_as_expected;
   json["seconds"] = run_seconds;
-  markdown +=
-      "\n" + std::string(all_as_expected ? "Every verdict as expected." : "**Some verdicts were not as expected.**") +
-      " Run time " + std::to_string(static_cast<int>(run_seconds)) + " s. Failing executions' histories: histories/.\n";
+  markdown += "\n" +
+              std::string(all_as_expected ? "Every verdict as expected." : "**Some verdicts were not as expected.**") +
+              " Run time " + std::to_string(static_cast<int>(run_seconds)) + " s." +
+              (histories_ ? " Failing executions' histories: histories/." : "") + "\n";
   write(stem);
   std::cout << markdown;
   if (!quiet) std::cerr << program_ << ": wrote " << out_ << "/" << stem << ".{md,json}\n";

@@ -49,6 +49,7 @@ class CheckerReport {
   std::string program_;
   std::string out_;  // as given, for the "wrote" line
   report::ResultsDir dir_;
+  bool histories_;  // failing executions are replayed into histories/
   std::chrono::steady_clock::time_point started_;
 };
 

@@ -240,7 +240,15 @@ int main(int argc, char** argv) {
       results.json["kill_matrix"] = matrix;
     }
     if (!failures.empty()) {
-      results.markdown += "\n## Counterexamples (events per thread with their labels and lines; rf; co)\n\n" + failures;
+      // Every counterexample in a file of its own (they run to hundreds of kilobytes); the first one here.
+      results.dir().write("graph-counterexamples.md",
+                          "# Counterexamples (events per thread with their site labels "
+                          "and core/ lines; rf; co)\n\n" +
+                              failures);
+      results.markdown +=
+          "\n## The first counterexample (every one: graph-counterexamples.md)\n\n" +
+          failures.substr(
+              0, failures.find("\n### ", 4) == std::string::npos ? failures.size() : failures.find("\n### ", 4) + 1);
     }
     return results.close("graph-verdicts", all_expected, o.quiet);
   });
