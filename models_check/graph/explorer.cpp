@@ -303,21 +303,6 @@ class Explorer {
     return options_.model == GraphModel::rc11 ? ax::rc11_consistent(x, true) : ax::armv8_consistent(x);
   }
 
-  // The coherence position of the latest write thread t has read or written at `location` (0: the initial
-  // write), ignoring event `except`.
-  int seen_at(int t, int location, int except) const {
-    const auto& co = g_.locations[static_cast<std::size_t>(location)].co;
-    int latest = 0;
-    for (int e : g_.thread_events[t]) {
-      const GraphEvent& ev = g_.events[e];
-      if (e == except || ev.location != location) continue;
-      const int w = ev.kind == ax::EventKind::read ? ev.rf : e;
-      const int at = static_cast<int>(std::find(co.begin(), co.end(), w) - co.begin());
-      if (at < static_cast<int>(co.size())) latest = std::max(latest, at);
-    }
-    return latest;
-  }
-
   void set_rf(Graph& g, int read, int write) {
     g.events[read].rf = write;
     g.events[read].value = g.events[write].value;
@@ -345,10 +330,7 @@ class Explorer {
   Value add_read(GraphEvent e) {
     const int id = g_.add(e);
     result_.largest_graph = std::max(result_.largest_graph, g_.events.size());
-    const std::vector<int>& co_order = g_.locations[static_cast<std::size_t>(e.location)].co;
-    // Coherence with the thread's own past (po-loc; both models require it): nothing older than what this thread
-    // already read or wrote at the location. A cheap filter; the model decides the rest.
-    const std::vector<int> candidates(co_order.begin() + seen_at(current_, e.location, id), co_order.end());
+    const std::vector<int> candidates = g_.locations[static_cast<std::size_t>(e.location)].co;
     const CoherenceFilter filter(g_);
     const std::vector<int> ok = passing(candidates, [&](int w) { return filter.read_ok(id, w); });
     for (std::size_t i = 0; i + 1 < ok.size(); ++i) {
@@ -388,8 +370,7 @@ class Explorer {
     } else if (options_.defect == ExplorerDefect::co_last_only) {
       places.push_back(co.size());
     } else {
-      for (std::size_t p = static_cast<std::size_t>(seen_at(t, e.location, id)) + 1; p <= co.size(); ++p)
-        places.push_back(p);
+      for (std::size_t p = 1; p <= co.size(); ++p) places.push_back(p);
     }
     const CoherenceFilter filter(g_);
     const std::vector<std::size_t> ok = passing(places, [&](std::size_t p) { return filter.write_ok(id, p); });
@@ -415,9 +396,6 @@ class Explorer {
     std::vector<int> renumbered;
     Graph g = g_.restricted(keep, renumbered);
     const int read = renumbered[r];
-    if (g.events[read].rmw) {
-      // An RMW's read that now reads w: no other RMW may read w (none does: w is new).
-    }
     const int write = g.add(w);
     g.events[read].stamp = g.next_stamp++;
     set_rf(g, read, write);
