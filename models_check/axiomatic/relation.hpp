@@ -71,6 +71,7 @@ template <class Set>
 inline void insert(Set& s, int e) {
   s |= single<Set>(e);
 }
+inline void insert(WideSet& s, int e) { s.word[e >> 6] |= std::uint64_t{1} << (e & 63); }
 // The first `n` events.
 template <class Set>
 inline Set first(int n) {
@@ -108,6 +109,11 @@ class BasicRelation {
   int size() const { return n_; }
   void add(int a, int b) {
     insert(row_[a], b);
+    diagonal_ = false;
+  }
+  // a × S.
+  void add_all(int a, const Set& s) {
+    row_[a] |= s;
     diagonal_ = false;
   }
   bool has(int a, int b) const { return has_bit(row_[a], b); }

@@ -57,7 +57,8 @@ struct GraphEvent {
   bool plain = false;           // a plain (non-atomic) cell
   bool has_site = false;
   Site site = Site::kOwnerAnnounce;
-  int rf = -1;  // reads: the event read from
+  int rf = -1;             // reads: the event read from
+  bool revisited = false;  // reads: given their write by a backward revisit (the explorer's maximality test)
   std::uint32_t stamp = 0;
   const char* file = "";
   unsigned line = 0;
@@ -172,29 +173,31 @@ inline WideExecution as_execution(const Graph& g) {
     if (ev.kind == ax::EventKind::fence) ax::insert(x.fences, e);
     if (ev.thread < 0) ax::insert(x.initial, e);
   }
+  // po, co and same-location as rows: each event's successors are the set of the events after it (built from the end).
   for (const auto& list : g.thread_events) {
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      for (std::size_t j = i + 1; j < list.size(); ++j) x.po.add(list[i], list[j]);
+    ax::WideSet later;
+    for (std::size_t i = list.size(); i-- > 0;) {
+      x.po.add_all(list[i], later);
+      ax::insert(later, list[i]);
       if (i + 1 < list.size() && g.events[list[i]].rmw && g.events[list[i]].kind == ax::EventKind::read &&
           g.events[list[i + 1]].rmw && g.events[list[i + 1]].kind == ax::EventKind::write) {
         x.rmw.add(list[i], list[i + 1]);
       }
     }
   }
-  for (const Location& l : g.locations) {
-    for (std::size_t i = 0; i < l.co.size(); ++i) {
-      for (std::size_t j = i + 1; j < l.co.size(); ++j) x.co.add(l.co[i], l.co[j]);
+  std::vector<ax::WideSet> at(g.locations.size());
+  for (std::size_t l = 0; l < g.locations.size(); ++l) {
+    ax::WideSet later;
+    for (std::size_t i = g.locations[l].co.size(); i-- > 0;) {
+      x.co.add_all(g.locations[l].co[i], later);
+      ax::insert(later, g.locations[l].co[i]);
     }
   }
-  // same location: bucket the events by location
-  std::vector<std::vector<int>> at(g.locations.size());
   for (int e = 0; e < n; ++e) {
-    if (g.events[e].location >= 0) at[static_cast<std::size_t>(g.events[e].location)].push_back(e);
+    if (g.events[e].location >= 0) ax::insert(at[static_cast<std::size_t>(g.events[e].location)], e);
   }
-  for (const auto& list : at) {
-    for (int a : list) {
-      for (int b : list) x.same_location.add(a, b);
-    }
+  for (int e = 0; e < n; ++e) {
+    if (g.events[e].location >= 0) x.same_location.add_all(e, at[static_cast<std::size_t>(g.events[e].location)]);
   }
   return x;
 }

@@ -389,6 +389,10 @@ class Explorer {
   // Read `r` (not in the new write's porf-prefix) reads from the new write `w`: keep what was added before r and
   // w's prefix, add w, then r (so every rf and po edge still runs from a smaller stamp to a larger one).
   void revisit(int r, const GraphEvent& w, const std::vector<bool>& prefix) {
+    if (options_.defect != ExplorerDefect::no_maximality && !maximal_extension(r, prefix)) {
+      ++result_.revisits_not_maximal;
+      return;
+    }
     const std::uint32_t cut = g_.events[r].stamp;
     std::vector<bool> keep(g_.events.size(), false);
     for (std::size_t e = 0; e < g_.events.size(); ++e) keep[e] = prefix[e] || g_.events[e].stamp < cut;
@@ -398,6 +402,7 @@ class Explorer {
     const int read = renumbered[r];
     const int write = g.add(w);
     g.events[read].stamp = g.next_stamp++;
+    g.events[read].revisited = true;
     set_rf(g, read, write);
     const std::size_t location = static_cast<std::size_t>(w.location);
     std::vector<int> co = g.locations[location].co;
@@ -435,6 +440,40 @@ class Explorer {
     }
   }
 
+  // TruSt's maximality condition (Kokologiannakis et al., POPL 2022, §5). Revisiting r deletes D = the events added
+  // after r and outside the new write's porf-prefix P. Every graph that differs from this one only in D and in what
+  // r read revisits to the same graph; the revisit is taken from one of them only: the one in which r and every
+  // event of D were added MAXIMALLY with respect to Prev(e) = {events added before e} ∪ P:
+  //   a read    reads the coherence-latest write of its location in Prev(e);
+  //   a write   is coherence-after every write of its location in Prev(e);
+  //   a read that a revisit gave its write counts as added where it first ran, before that write, so it is maximal
+  //             only if its write is in P (TruSt keeps it there; this explorer re-adds it after its write, and
+  //             Prev(e) agrees with TruSt's once its write is in P, since everything added in between is too).
+  bool maximal_extension(int r, const std::vector<bool>& prefix) const {
+    const std::uint32_t cut = g_.events[r].stamp;
+    const auto deleted = [&](int e) { return g_.events[e].stamp > cut && !prefix[e]; };
+    // A write after `w` in its location's coherence order that is in Prev(e).
+    const auto newer_in_prev = [&](int w, int e) {
+      const auto& co = g_.locations[static_cast<std::size_t>(g_.events[w].location)].co;
+      for (auto it = std::find(co.begin(), co.end(), w) + 1; it < co.end(); ++it) {
+        if (g_.events[*it].stamp < g_.events[e].stamp || prefix[*it]) return true;
+      }
+      return false;
+    };
+    for (std::size_t i = 0; i < g_.events.size(); ++i) {
+      const int e = static_cast<int>(i);
+      const GraphEvent& ev = g_.events[i];
+      if (ev.thread < 0 || (e != r && !deleted(e))) continue;
+      if (ev.kind == ax::EventKind::read) {
+        if (ev.revisited && !prefix[ev.rf]) return false;
+        if (newer_in_prev(ev.rf, e)) return false;
+      } else if (ev.kind == ax::EventKind::write) {
+        if (newer_in_prev(e, e)) return false;
+      }
+    }
+    return true;
+  }
+
   [[noreturn]] void leave_thread(ThreadState s) {
     state_[current_] = s;
     fibers_[current_]->suspend();
@@ -469,6 +508,7 @@ class Explorer {
         h.add(static_cast<std::uint64_t>(ev.kind) | static_cast<std::uint64_t>(ev.location + 1) << 8);
         h.add(ev.value.lo);
         h.add(ev.value.hi);
+        if (with_stamps) h.add(ev.revisited ? 1 : 0);
         if (ev.rf >= 0)
           h.add(static_cast<std::uint64_t>(where[ev.rf].first + 1) << 32 |
                 static_cast<std::uint32_t>(where[ev.rf].second));
@@ -514,8 +554,7 @@ class Explorer {
               record_failure({Verdict::kOtherFailure, std::string("thread threw: ") + ex.what()});
               dead_ = dead_ || !stopped_;  // discarded (inconsistent) or not stopping: this run ends here
             }
-          },
-          &home_);
+          });
     }
     // Replay: the recorded events, in stamp order.
     replay_phase_ = true;
@@ -641,7 +680,6 @@ class Explorer {
   ExploreResult result_;
   int threads_ = 0;
   std::vector<std::unique_ptr<Fiber>> fibers_;
-  ucontext_t home_{};
   std::vector<Graph> work_;
   std::unordered_set<std::uint64_t> explored_revisits_, explored_complete_;
   bool stopped_ = false;

@@ -16,14 +16,16 @@
 // hb-coherence and atomicity); the memory model's own axioms (models_check/axiomatic/models.hpp, on the whole graph)
 // judge every run at its end and every failure before it is reported.
 //
-// EXPLORED ONCE? Revisits are not filtered by TruSt's maximality condition, so with three or more threads a
-// complete execution can be reached along several paths: `complete` counts runs, `distinct` counts different
-// executions (a hash of events, rf and co), and only revisits that rebuild a graph already explored (same events,
-// rf, co and addition order) are skipped. Two-thread programs are explored without repetition (the validation
-// checks it); what is claimed for every program is completeness, held by the validation
+// EXPLORED ONCE. A backward revisit is taken only from the graph in which the revisited read and every event the
+// revisit deletes were added MAXIMALLY (TruSt's condition, POPL 2022, §5, restated in explorer.cpp for this
+// explorer's addition order): each read read the coherence-latest write before it or in the write's porf-prefix,
+// each write went coherence-last among those, and no deleted read had been given its write by a revisit from
+// outside that prefix. Every other graph that revisits to the same result is skipped, so each consistent execution
+// is reached along one path: `complete` equals `distinct` (a hash of events, rf and co), which the validation
+// checks on random programs of up to five threads. Completeness is held by the validation
 // (tests/models_check/graph/explorer_test.cpp): every C++ program of the litmus catalogue, every protocol litmus
-// program and hundreds of random programs of two and three threads have exactly the consistent executions the
-// axiomatic checker enumerates, and each planted explorer defect breaks that.
+// program and hundreds of random programs have exactly the consistent executions the axiomatic checker enumerates,
+// and each planted explorer defect breaks that (or, for the maximality condition, makes executions repeat).
 //
 // WHAT IS EXPLORED. Executions whose po ∪ rf is acyclic: RC11 exactly; ARMv8 through the standard mapping
 // (program.hpp: LDAR or LDAPR for acquire loads) restricted to those executions, with no dependency assumed
@@ -80,6 +82,7 @@ enum class ExplorerDefect : std::uint8_t {
   no_revisits,     // reads only read writes already in the graph: executions are lost
   co_last_only,    // a write only ever goes coherence-last: executions are lost
   no_final_check,  // runs are not judged by the model's axioms at their end: inconsistent ones are counted
+  no_maximality,   // every backward revisit is taken: executions are explored more than once
 };
 
 struct ExploreOptions {
@@ -105,10 +108,11 @@ struct ExploreResult {
   std::uint64_t cut = 0;                // runs cut by the exploration bound
   std::uint64_t revisits = 0;           // backward revisits explored
   std::uint64_t revisits_repeated = 0;  // revisits skipped because the graph had been explored
-  std::uint64_t inconsistent = 0;       // choices rejected by the coherence filter (coherence_filter.hpp)
-  std::uint64_t inconsistent_runs = 0;  // runs the model's axioms rejected at their end (the filter is weaker)
-  std::size_t largest_graph = 0;        // events, initial writes included
-  bool bounded = false;                 // stopped by max_executions or max_seconds: not exhaustive
+  std::uint64_t revisits_not_maximal = 0;  // revisits skipped by the maximality condition (explorer.cpp)
+  std::uint64_t inconsistent = 0;          // choices rejected by the coherence filter (coherence_filter.hpp)
+  std::uint64_t inconsistent_runs = 0;     // runs the model's axioms rejected at their end (the filter is weaker)
+  std::size_t largest_graph = 0;           // events, initial writes included
+  bool bounded = false;                    // stopped by max_executions or max_seconds: not exhaustive
   double seconds = 0;
 };
 
