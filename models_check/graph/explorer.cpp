@@ -62,12 +62,18 @@ class Explorer {
     for (int t = 0; t < threads_; ++t) fibers_.push_back(std::make_unique<Fiber>());
     Graph root;
     root.thread_events.resize(static_cast<std::size_t>(threads_));
-    work_.push_back(std::move(root));
+    work_.push_back({nullptr, std::move(root)});
     std::uint64_t runs = 0;
     while (!work_.empty() && !stopped_) {
-      Graph g = std::move(work_.back());
+      Graph g = materialize(std::move(work_.back()));
       work_.pop_back();
+      const std::size_t pushed_before = work_.size();
       run(std::move(g));
+      // The run's forward alternatives share its final graph.
+      const auto final_graph = std::make_shared<const Graph>(std::move(g_));
+      for (std::size_t i = pushed_before; i < work_.size(); ++i) {
+        if (work_[i].event >= 0) work_[i].run = final_graph;
+      }
       ++runs;
       const auto now = std::chrono::steady_clock::now();
       const double seconds = std::chrono::duration<double>(now - start).count();
@@ -78,7 +84,7 @@ class Explorer {
       }
       if (options_.progress && now - last_progress >= std::chrono::seconds(1)) {
         last_progress = now;
-        options_.progress(runs, seconds);
+        options_.progress(runs, result_.complete, work_.size(), seconds);
       }
     }
     result_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -215,9 +221,11 @@ class Explorer {
   }
 
   [[noreturn]] void fail(Verdict v, const std::string& what, const char* file, unsigned line) {
-    std::ostringstream s;
-    s << what << " (thread " << current_ << ", " << file << ":" << line << ")";
-    record_failure({v, s.str()});
+    {
+      std::ostringstream s;
+      s << what << " (thread " << current_ << ", " << file << ":" << line << ")";
+      record_failure({v, s.str()});
+    }
     leave_thread(ThreadState::blocked);
   }
 
@@ -309,6 +317,9 @@ class Explorer {
   }
 
   // The options the filter lets through; none (the prefix was inconsistent after all): the run is abandoned.
+  //
+  // A thread leaves (leave_thread) only from frames that own no heap memory: its stack is dropped without
+  // destructors (fiber.hpp), so add_read and add_write leave after their working parts have returned.
   template <class T, class Pass>
   std::vector<T> passing(const std::vector<T>& options, Pass&& pass) {
     std::vector<T> ok;
@@ -319,34 +330,37 @@ class Explorer {
         ++result_.inconsistent;
       }
     }
-    if (ok.empty()) {
-      dead_ = true;
-      leave_thread(ThreadState::blocked);
-    }
+    if (ok.empty()) dead_ = true;  // the caller leaves the thread once its own locals are gone
     return ok;
   }
 
   // A new read: one branch per consistent write; this run continues with the coherence-latest.
   Value add_read(GraphEvent e) {
+    const bool added = try_add_read(std::move(e));
+    if (!added) leave_thread(ThreadState::blocked);
+    return g_.events[g_.thread_events[current_].back()].value;
+  }
+  bool try_add_read(GraphEvent e) {
     const int id = g_.add(e);
     result_.largest_graph = std::max(result_.largest_graph, g_.events.size());
     const std::vector<int> candidates = g_.locations[static_cast<std::size_t>(e.location)].co;
     const CoherenceFilter filter(g_);
     const std::vector<int> ok = passing(candidates, [&](int w) { return filter.read_ok(id, w); });
-    for (std::size_t i = 0; i + 1 < ok.size(); ++i) {
-      Graph alternative = g_;
-      set_rf(alternative, id, ok[i]);
-      work_.push_back(std::move(alternative));
-    }
+    if (ok.empty()) return false;
+    for (std::size_t i = 0; i + 1 < ok.size(); ++i) work_.push_back(forward(id, ok[i], 0));
     set_rf(g_, id, ok.back());
-    return g_.events[id].value;
+    return true;
   }
 
   // A new write: one branch per consistent coherence place (an RMW's write goes right after the write its read
   // read), and one per read it can revisit; this run continues with the write coherence-last.
   void add_write(GraphEvent e, int after = -1) {
-    const int t = current_;
     enforce_bound({false, Mo::kRelaxed, e.has_site, e.site, "", 0});
+    const bool added = try_add_write(std::move(e), after);
+    if (!added) leave_thread(ThreadState::blocked);
+  }
+  bool try_add_write(GraphEvent e, int after) {
+    const int t = current_;
     const auto& mine = g_.thread_events[t];
     std::vector<bool> prefix =
         mine.empty() ? std::vector<bool>(g_.events.size(), false) : g_.porf_prefix({mine.back()});
@@ -374,16 +388,12 @@ class Explorer {
     }
     const CoherenceFilter filter(g_);
     const std::vector<std::size_t> ok = passing(places, [&](std::size_t p) { return filter.write_ok(id, p); });
-    for (std::size_t i = 0; i + 1 < ok.size(); ++i) {
-      Graph alternative = g_;
-      std::vector<int> placed = co;
-      placed.insert(placed.begin() + static_cast<std::ptrdiff_t>(ok[i]), id);
-      alternative.locations[location].co = std::move(placed);
-      work_.push_back(std::move(alternative));
-    }
+    if (ok.empty()) return false;
+    for (std::size_t i = 0; i + 1 < ok.size(); ++i) work_.push_back(forward(id, -1, ok[i]));
     std::vector<int> placed = co;
     placed.insert(placed.begin() + static_cast<std::ptrdiff_t>(ok.back()), id);
     g_.locations[location].co = std::move(placed);
+    return true;
   }
 
   // Read `r` (not in the new write's porf-prefix) reads from the new write `w`: keep what was added before r and
@@ -435,7 +445,7 @@ class Explorer {
         continue;
       }
       ++result_.revisits;
-      work_.push_back(g);
+      work_.push_back({nullptr, g});
       g.locations[location].co = co;
     }
   }
@@ -546,15 +556,14 @@ class Explorer {
     program_.setup();
     threads_started_ = true;
     for (int t = 0; t < threads_; ++t) {
-      fibers_[t]->start(
-          [this, t] {
-            try {
-              program_.run_thread(t);
-            } catch (const std::exception& ex) {  // an exception must not unwind past the fiber's entry
-              record_failure({Verdict::kOtherFailure, std::string("thread threw: ") + ex.what()});
-              dead_ = dead_ || !stopped_;  // discarded (inconsistent) or not stopping: this run ends here
-            }
-          });
+      fibers_[t]->start([this, t] {
+        try {
+          program_.run_thread(t);
+        } catch (const std::exception& ex) {  // an exception must not unwind past the fiber's entry
+          record_failure({Verdict::kOtherFailure, std::string("thread threw: ") + ex.what()});
+          dead_ = dead_ || !stopped_;  // discarded (inconsistent) or not stopping: this run ends here
+        }
+      });
     }
     // Replay: the recorded events, in stamp order.
     replay_phase_ = true;
@@ -680,7 +689,50 @@ class Explorer {
   ExploreResult result_;
   int threads_ = 0;
   std::vector<std::unique_ptr<Fiber>> fibers_;
-  std::vector<Graph> work_;
+  // A branch still to explore. A forward alternative (another write for a new read, another coherence place for a
+  // new write) is the choice alone: the graph it branches from is its run's final graph cut back to the events
+  // added up to the choosing event (every later event has a later stamp), and all of a run's alternatives share
+  // that one graph. A revisit's graph (and the root) is kept whole. Without the sharing, the pending branches of
+  // a three-worker frame loop filled the machine's memory in minutes.
+  struct Branch {
+    std::shared_ptr<const Graph> run;  // forward: the final graph of the run that made the choice
+    Graph graph;                       // otherwise: the graph itself
+    int event = -1;                    // forward: the choosing event, in `run`
+    int rf = -1;                       // forward read: the write it reads instead, in `run`
+    std::size_t co_place = 0;          // forward write: its place among the location's other writes
+  };
+  std::vector<Branch> work_;
+
+  // The branch in which new event `event` of g_ reads `rf` instead (a read) or takes coherence place `co_place`
+  // (a write); its `run` is filled in when the run ends.
+  Branch forward(int event, int rf, std::size_t co_place) const {
+    Branch b;
+    b.event = event;
+    b.rf = rf;
+    b.co_place = co_place;
+    return b;
+  }
+
+  Graph materialize(Branch&& b) const {
+    if (b.event < 0) return std::move(b.graph);
+    const Graph& base = *b.run;
+    const std::uint32_t up_to = base.events[b.event].stamp;
+    std::vector<bool> keep(base.events.size());
+    for (std::size_t e = 0; e < keep.size(); ++e) keep[e] = base.events[e].stamp <= up_to;
+    std::vector<int> renumbered;
+    Graph g = base.restricted(keep, renumbered);
+    g.next_stamp = up_to + 1;
+    const int e = renumbered[b.event];
+    if (g.events[e].kind == ax::EventKind::read) {
+      g.events[e].rf = renumbered[b.rf];
+      g.events[e].value = g.events[g.events[e].rf].value;
+    } else {
+      auto& co = g.locations[static_cast<std::size_t>(g.events[e].location)].co;
+      co.erase(std::find(co.begin(), co.end(), e));
+      co.insert(co.begin() + static_cast<std::ptrdiff_t>(b.co_place), e);
+    }
+    return g;
+  }
   std::unordered_set<std::uint64_t> explored_revisits_, explored_complete_;
   bool stopped_ = false;
 

@@ -95,7 +95,8 @@ struct ExploreOptions {
   // it are cut and counted; the search is exhaustive for the executions within it.
   Site bounded_site = Site::kThiefShrinkEnd;
   int bound = 0;
-  std::function<void(std::uint64_t runs, double seconds)> progress;  // called about once a second
+  // Called about once a second: runs so far, complete executions so far, branches still to explore.
+  std::function<void(std::uint64_t runs, std::uint64_t complete, std::size_t pending, double seconds)> progress;
 };
 
 struct ExploreResult {

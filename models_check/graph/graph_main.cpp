@@ -142,10 +142,12 @@ int main(int argc, char** argv) {
           eo.max_seconds = o.max_seconds;
           if (o.no_maximality) eo.defect = graph::ExplorerDefect::no_maximality;
           if (!o.quiet) {
-            eo.progress = [&, next = 10.0](std::uint64_t runs, double seconds) mutable {
+            eo.progress = [&, next = 10.0](std::uint64_t runs, std::uint64_t complete, std::size_t pending,
+                                           double seconds) mutable {
               if (seconds < next) return;
               next += 10;
               std::cerr << "  " << s.name << " / " << p.name << " / " << graph::name(m) << ": " << runs << " runs, "
+                        << complete << " complete executions, " << pending << " branches pending, "
                         << static_cast<int>(seconds) << " s\n";
             };
           }
