@@ -210,6 +210,7 @@ class Explorer {
     }
     wait_begin_[t] = begin;
     wait_site_[t] = site;
+    end_run_if_blocked_for_good(t);
     leave_thread(ThreadState::blocked);
   }
 
@@ -217,6 +218,7 @@ class Explorer {
   void assume(bool holds) {
     if (holds) return;
     assumed_false_[current_] = true;
+    end_run_if_blocked_for_good(current_);
     leave_thread(ThreadState::blocked);
   }
 
@@ -275,6 +277,7 @@ class Explorer {
       // Block the thread rather than abandon the run: revisits by the other threads' later writes still happen, so
       // an execution within the bound whose canonical path passes here is still reached.
       bound_blocked_[current_] = true;
+      end_run_if_blocked_for_good(current_);
       leave_thread(ThreadState::blocked);
     }
   }
@@ -482,6 +485,29 @@ class Explorer {
       }
     }
     return true;
+  }
+
+  // Thread t stops here (a failed wait, a false assumption, the bound) right after reading, last, a write that a
+  // write added before the read already follows in coherence. No branch of this run can complete it: a later revisit
+  // that deletes that read needs it maximal (maximal_extension) and it is not, nor can the read itself be revisited;
+  // a branch that keeps it keeps the thread's whole prefix, so the thread stops at the same place again. The run
+  // ends now instead of running the other threads on for nothing (the branches already taken stay).
+  void end_run_if_blocked_for_good(int t) {
+    if (options_.defect == ExplorerDefect::no_maximality) return;  // the argument rests on the condition
+    const auto& list = g_.thread_events[t];
+    for (auto it = list.rbegin(); it != list.rend(); ++it) {
+      const GraphEvent& e = g_.events[*it];
+      if (e.kind != ax::EventKind::read) continue;
+      const auto& co = g_.locations[static_cast<std::size_t>(e.location)].co;
+      for (auto w = std::find(co.begin(), co.end(), e.rf) + 1; w < co.end(); ++w) {
+        if (g_.events[*w].stamp < e.stamp) {
+          ++result_.ended_early;
+          dead_ = true;
+          return;
+        }
+      }
+      return;
+    }
   }
 
   [[noreturn]] void leave_thread(ThreadState s) {

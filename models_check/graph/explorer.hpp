@@ -107,6 +107,7 @@ struct ExploreResult {
   std::uint64_t blocked = 0;            // runs that ended with a wait the graph can still satisfy elsewhere (discarded)
   std::uint64_t hangs = 0;              // runs that ended with a wait nothing can satisfy
   std::uint64_t cut = 0;                // runs cut by the exploration bound
+  std::uint64_t ended_early = 0;        // runs ended when a thread stopped for good (explorer.cpp: blocked for good)
   std::uint64_t revisits = 0;           // backward revisits explored
   std::uint64_t revisits_repeated = 0;  // revisits skipped because the graph had been explored
   std::uint64_t revisits_not_maximal = 0;  // revisits skipped by the maximality condition (explorer.cpp)

@@ -191,6 +191,7 @@ int main(int argc, char** argv) {
                            {"blocked", r.blocked},
                            {"hangs", r.hangs},
                            {"cut", r.cut},
+                           {"ended_early", r.ended_early},
                            {"revisits", r.revisits},
                            {"revisits_repeated", r.revisits_repeated},
                            {"revisits_not_maximal", r.revisits_not_maximal},
