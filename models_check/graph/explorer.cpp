@@ -718,8 +718,7 @@ class Explorer {
   // A branch still to explore. A forward alternative (another write for a new read, another coherence place for a
   // new write) is the choice alone: the graph it branches from is its run's final graph cut back to the events
   // added up to the choosing event (every later event has a later stamp), and all of a run's alternatives share
-  // that one graph. A revisit's graph (and the root) is kept whole. Without the sharing, the pending branches of
-  // a three-worker frame loop filled the machine's memory in minutes.
+  // that one graph. A revisit's graph (and the root) is kept whole.
   struct Branch {
     std::shared_ptr<const Graph> run;  // forward: the final graph of the run that made the choice
     Graph graph;                       // otherwise: the graph itself
