@@ -89,6 +89,16 @@ std::vector<graph::GraphModel> chosen_models(const Options& o) {
   return out;
 }
 
+// One cell's exploration: the model, the steal bound, the time limit, and the maximality condition unless turned off.
+graph::ExploreOptions explore_options(const Options& o, graph::GraphModel m) {
+  graph::ExploreOptions eo;
+  eo.model = m;
+  eo.bound = o.steals;
+  eo.max_seconds = o.max_seconds;
+  if (o.no_maximality) eo.defect = graph::ExplorerDefect::no_maximality;
+  return eo;
+}
+
 // The Relacy tier's expectations (expected_verdicts.hpp) hold under RC11 and ARMv8 with LDAPR; with LDAR, Paper's
 // handshake is ordered by the store-release → load-acquire rule (bob's [L];po;[A]) and it is exactly-once
 // (docs/model-checking.md's policy × model table).
@@ -136,11 +146,7 @@ int main(int argc, char** argv) {
         for (graph::GraphModel m : chosen_models(o)) {
           current_table() = p;
           graph::StealingProgram program(s, mode);
-          graph::ExploreOptions eo;
-          eo.model = m;
-          eo.bound = o.steals;
-          eo.max_seconds = o.max_seconds;
-          if (o.no_maximality) eo.defect = graph::ExplorerDefect::no_maximality;
+          graph::ExploreOptions eo = explore_options(o, m);
           if (!o.quiet) {
             eo.progress = [&, next = 10.0](std::uint64_t runs, std::uint64_t complete, std::size_t pending,
                                            double seconds) mutable {
@@ -231,12 +237,7 @@ int main(int argc, char** argv) {
             }
             current_table() = mutant.table;
             graph::StealingProgram program(s, mode);
-            graph::ExploreOptions eo;
-            eo.model = m;
-            eo.bound = o.steals;
-            eo.max_seconds = o.max_seconds;
-            if (o.no_maximality) eo.defect = graph::ExplorerDefect::no_maximality;
-            const graph::ExploreResult r = graph::explore(program, eo);
+            const graph::ExploreResult r = graph::explore(program, explore_options(o, m));
             verdict = r.outcome.verdict;
             where = std::string(s.name);
             incomplete = incomplete || r.bounded;
