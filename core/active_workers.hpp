@@ -15,13 +15,17 @@
 #include <cstdint>
 
 #include "core/labelled_access.hpp"
+#include "core/state_home.hpp"
 
 namespace frontsteal {
 
 template <class Backend, class Policy>
 class ActiveWorkers {
  public:
-  explicit ActiveWorkers(std::uint32_t workers) : count_(workers) {}
+  // `home`: where the count lives (state_home.hpp); the default builds it in place. A remote home's count
+  // starts as its owner made it: rearm() before the first frame.
+  explicit ActiveWorkers(std::uint32_t workers, const HomeOf<Backend>& home = {})
+      : count_(atomic_word<Backend>(home, StateWord::kActiveCount, workers)) {}
 
   void join() noexcept { A::template fetch_add<Site::kActiveJoin>(count_, std::uint32_t{1}); }    // A1
   void leave() noexcept { A::template fetch_sub<Site::kActiveLeave>(count_, std::uint32_t{1}); }  // A2

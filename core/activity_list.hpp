@@ -21,12 +21,12 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <new>
 #include <ostream>
 
 #include "core/id_range.hpp"
 #include "core/labelled_access.hpp"
+#include "core/state_home.hpp"
 #include "core/try_lock.hpp"
 
 namespace frontsteal {
@@ -50,20 +50,28 @@ struct ActivitySlot {
   using Atomic = typename Backend::template Atomic<T>;
   template <class T>
   using Cell = typename Backend::template Cell<T>;
+  using Home = HomeOf<Backend>;
 
-  explicit ActivitySlot(std::uint32_t max_entries)
-      : entries(std::make_unique<Cell<SegmentEntry>[]>(max_entries)), capacity(max_entries) {}
+  // `home`: where the words live (state_home.hpp); the default builds them in place.
+  explicit ActivitySlot(std::uint32_t max_entries, const Home& home = {})
+      : front(atomic_word<Backend>(home, StateWord::kFront, 0u)),
+        transient(atomic_word<Backend>(home, StateWord::kTransient, 0u)),
+        end(atomic_word<Backend>(home, StateWord::kEnd, 0u)),
+        lock(home),
+        entries(home, StateWord::kEntries, max_entries),
+        entry_count(cell_word<Backend, std::uint32_t>(home, StateWord::kEntryCount)),
+        capacity(max_entries) {}
   ActivitySlot(const ActivitySlot&) = delete;
   ActivitySlot& operator=(const ActivitySlot&) = delete;
 
-  alignas(kCacheLine) Atomic<std::uint32_t> front{0u};  // Front[p]: flat positions below it are claimed
-  Atomic<std::uint32_t> transient{0u};                  // ListTransient[p]: 1 while a claim is in flight
-  Atomic<std::uint32_t> end{0u};                        // End of ActivityList[p] (flat position)
+  alignas(kCacheLine) Atomic<std::uint32_t> front;  // Front[p]: flat positions below it are claimed
+  Atomic<std::uint32_t> transient;                  // ListTransient[p]: 1 while a claim is in flight
+  Atomic<std::uint32_t> end;                        // End of ActivityList[p] (flat position)
 
   alignas(kCacheLine) TryLock<Backend, Policy> lock;  // LockList[p]
 
-  alignas(kCacheLine) std::unique_ptr<Cell<SegmentEntry>[]> entries;  // the list body
-  Cell<std::uint32_t> entry_count{};
+  alignas(kCacheLine) CellArray<Backend, SegmentEntry> entries;  // the list body
+  Cell<std::uint32_t> entry_count;
   const std::uint32_t capacity;  // immutable: every list of a run fits (one range holds at least one item)
 };
 

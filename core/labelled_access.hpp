@@ -76,8 +76,9 @@ struct Access {
   static auto read(const C& c, Where where = Where::current()) noexcept {
     return Backend::read(c, where);
   }
+  // `c` is a cell, or a handle to one (state_home.hpp: CellArray::operator[] of a remote home returns one).
   template <class C, class T>
-  static void write(C& c, T v, Where where = Where::current()) noexcept {
+  static void write(C&& c, T v, Where where = Where::current()) noexcept {
     Backend::write(c, v, where);
   }
 };

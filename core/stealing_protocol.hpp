@@ -196,11 +196,13 @@ enum class [[nodiscard]] StealOutcome : std::uint8_t{
     kStolen,      // share() holds at least one item, ready to install
 };
 
-// What try_steal tells an observer: the victim's LockList is held (locked); a wait at T4 begins (wait_begins, at
-// the first poll that finds ListTransient raised) and is over (wait_over, after every attempt that reached T4,
-// whether it waited or not). The default does nothing and compiles away.
+// What try_steal tells an observer: the victim's LockList is held (locked); the share is planned, End not yet
+// lowered (planned: optional, for tests that hold a thief there to force an interleaving); a wait at T4 begins
+// (wait_begins, at the first poll that finds ListTransient raised) and is over (wait_over, after every attempt
+// that reached T4, whether it waited or not). The default does nothing and compiles away.
 struct NoStealObserver {
   void locked() noexcept {}
+  void planned() noexcept {}
   void wait_begins() noexcept {}
   void wait_over() noexcept {}
 };
@@ -227,6 +229,7 @@ class Thief {
       unlock_victim(victim);
       return StealOutcome::kEmpty;
     }
+    if constexpr (requires { observe.planned(); }) observe.planned();
     shrink_victim(victim);
     storeload_fence();
     for (std::uint32_t spins = 0; !victim_quiescent(victim); ++spins) {

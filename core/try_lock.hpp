@@ -12,13 +12,15 @@
 #include <cstdint>
 
 #include "core/labelled_access.hpp"
+#include "core/state_home.hpp"
 
 namespace frontsteal {
 
 template <class Backend, class Policy>
 class TryLock {
  public:
-  TryLock() = default;
+  // `home`: where the lock word lives (state_home.hpp); the default builds it in place, unlocked.
+  explicit TryLock(const HomeOf<Backend>& home = {}) : held_(atomic_word<Backend>(home, StateWord::kLock, 0u)) {}
   TryLock(const TryLock&) = delete;
   TryLock& operator=(const TryLock&) = delete;
 
@@ -40,7 +42,7 @@ class TryLock {
 
  private:
   using A = Access<Backend, Policy>;
-  typename Backend::template Atomic<std::uint32_t> held_{0u};
+  typename Backend::template Atomic<std::uint32_t> held_;
 };
 
 }  // namespace frontsteal

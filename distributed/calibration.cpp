@@ -7,7 +7,7 @@
 
 #include "distributed/calibration_operations.hpp"
 #include "distributed/rank_watchdog.hpp"
-#include "distributed/rma_stealing.hpp"
+#include "distributed/window_protocol.hpp"
 #include "measure/paired_comparison.hpp"
 #include "reporting/build_stamp.hpp"
 #include "reporting/results_dir.hpp"
@@ -58,17 +58,21 @@ std::vector<CalibrationRow> measure_from_rank0(const Options& o, RmaWindow& win)
   rows.push_back(time_op(ops::kGet, s, [&] { (void)win.get(1, kFront); }));
   rows.push_back(time_op(ops::kPut, s, [&] { win.put(1, kEntryCount, 0u); }));
   rows.push_back(time_op(ops::kCompareAndSwap, s, [&] { (void)win.compare_and_swap(1, kLock, 7u, 7u); }));
-  rows.push_back(time_op(ops::kFetchAndOp, s, [&] { (void)win.fetch_and_op(1, kActive, 0, MPI_SUM); }));
+  rows.push_back(time_op(ops::kFetchAndOp, s, [&] { (void)win.fetch_and_op(1, kActive, 0u, MPI_SUM); }));
   rows.push_back(time_op(ops::kFlush, s, [&] { win.flush(1); }));
   rows.push_back(time_op(ops::kWinSync, s, [&] { win.sync(); }));
-  RmaActiveCount active(win);
-  RmaOwner owner(win, 0);
+  // core's Owner over the window (rank 0's own slot), F1 with and without MPI_Win_sync.
   const RangeList big{{0, static_cast<ItemId>(std::min<std::uint32_t>(win.capacity(), 1u << 20))}};
-  owner.install(big);
-  rows.push_back(time_op(ops::kClaimWithSync, s, [&] { (void)owner.try_claim(); }));
-  RmaOwner plain_owner(win, 0, false);
-  plain_owner.install(big);
-  rows.push_back(time_op(ops::kClaim, s, [&] { (void)plain_owner.try_claim(); }));
+  {
+    const auto owner = make_window_protocol(win, 1, true, WindowPolicy::kFenced);
+    owner->install(big);
+    rows.push_back(time_op(ops::kClaimWithSync, s, [&] { (void)owner->try_claim(); }));
+  }
+  {
+    const auto owner = make_window_protocol(win, 1, false, WindowPolicy::kFenced);
+    owner->install(big);
+    rows.push_back(time_op(ops::kClaim, s, [&] { (void)owner->try_claim(); }));
+  }
   OwnerProgress poke(MPI_COMM_WORLD, 0);
   rows.push_back(time_op(ops::kProgressCall, s, [&] { poke.call(); }));
   rows.push_back(time_op(ops::kRequestPoll, s, [&] {

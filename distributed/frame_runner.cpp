@@ -19,7 +19,9 @@ FrameRunner::FrameRunner(const Options& o, Workload& wl, int rank, int ranks, Rm
       rank_(rank),
       ranks_(ranks),
       win_(win),
-      active_(win),
+      protocol_(
+          make_window_protocol(win, ranks, o.owner_fence == "win-sync",
+                               o.defect == "skip-reread" ? WindowPolicy::kBrokenSkipsReread : WindowPolicy::kFenced)),
       progress_(MPI_COMM_WORLD, owner_progress_us),
       request_poll_(std::max(0.0, owner_progress_us)) {
   for (int v = 0; v < ranks; ++v) {
@@ -27,7 +29,6 @@ FrameRunner::FrameRunner(const Options& o, Workload& wl, int rank, int ranks, Rm
   }
   std::mt19937_64 rng(0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(rank + 1));
   std::shuffle(victims_.begin(), victims_.end(), rng);  // §4.2.1: victims in a random order per processor
-  defects_ = o.defect == "skip-reread" ? Defect::kSkipFrontReread : Defect::kNone;
 }
 
 // Runs one item, with the fault hooks; counts and triangles go to the frame.
@@ -78,27 +79,25 @@ void FrameRunner::stall(int frame) {
 }
 
 // ---- rma: load stealing over the window ----
-void FrameRunner::rma_frame(Frame& fr, RmaOwner& owner, RmaThief& thief, RangeList& log) {
+void FrameRunner::rma_frame(Frame& fr, RangeList& log) {
   log.clear();
-  drain_rma(fr, owner, log);
-  active_.leave();  // A2: own list exhausted, every claimed item done
-  RmaStealHooks hooks;
-  hooks.defects = defects_;
+  drain_rma(fr, log);
+  protocol_->leave();  // A2: own list exhausted, every claimed item done
+  StealHooks hooks;
   hooks.force_overlap = o_.force_overlap;
   std::uint32_t failed_rounds = 0;
   const auto idle_start = Clock::now();
   const double busy_before = stats_.busy_s;
-  while (!active_.all_idle()) {  // A3
+  while (!protocol_->all_idle()) {  // A3
     bool got = false;
     for (int v : victims_) {
       const auto t0 = Clock::now();
       stats_.steal_attempts += 1;
-      const RmaStealOutcome out = thief.try_steal(v, hooks);
-      if (out != RmaStealOutcome::kStolen) continue;
+      if (protocol_->try_steal(v, hooks) != StealOutcome::kStolen) continue;
       record_steal(Clock::now() - t0);
-      owner.install(thief.share());
-      drain_rma(fr, owner, log);
-      active_.leave();  // A2: the stolen share is done
+      protocol_->install(protocol_->share());
+      drain_rma(fr, log);
+      protocol_->leave();  // A2: the stolen share is done
       got = true;
       break;
     }
@@ -116,10 +115,10 @@ void FrameRunner::rma_frame(Frame& fr, RmaOwner& owner, RmaThief& thief, RangeLi
 }
 
 // The owner's loop: claim (O1-O4), then maybe one progress call for the transport; both are owner overhead.
-void FrameRunner::drain_rma(Frame& fr, RmaOwner& owner, RangeList& log) {
+void FrameRunner::drain_rma(Frame& fr, RangeList& log) {
   while (true) {
     const auto t0 = Clock::now();
-    const std::optional<ItemId> id = owner.try_claim();
+    const std::optional<ItemId> id = protocol_->try_claim();
     if (id && progress_.maybe_call(t0)) stats_.progress_calls += 1;
     record_owner_op(Clock::now() - t0);
     if (!id) return;

@@ -1,14 +1,14 @@
 // frame_runner.hpp — one rank's part of a frame under each scheduler of frontsteal-mpi:
-//   rma       load stealing with each rank's slot in an MPI-3 window (rma_stealing.hpp): the owner claims
-//             locally, thieves steal with one-sided Get/Put/CAS; the busy rank never answers anyone (but may
-//             call into MPI for the transport's sake: owner_progress.hpp).
+//   rma       load stealing: core/'s protocol with each rank's slot in an MPI-3 window (window_protocol.hpp):
+//             the owner claims locally, thieves steal with one-sided operations; the busy rank never answers
+//             anyone (but may call into MPI for the transport's sake: owner_progress.hpp).
 //   request   request-based stealing (§7: "request based load stealing, but overhead on the busy processors
 //             must increase"): an idle rank sends a steal request; the busy owner polls (MPI_Iprobe) between
 //             items and replies with the second half of its remaining list.
 //   central   a central counter in rank 0's window (MPI_Fetch_and_op), grain N/(100P) as §4.1.
 //   static    static round robin over ranks (§3), no communication.
 // TERMINATION inside a frame: the active count of core/active_workers.hpp (I-T) in rank 0's window
-// (RmaActiveCount): not a master, rank 0 runs no code for it (passive target). The request scheduler ends its
+// (WindowProtocol's): not a master, rank 0 runs no code for it (passive target). The request scheduler ends its
 // frame with MPI_Ibarrier while still answering requests (empty), so no request is left unanswered.
 // FAULTS: --stall and --die act after the rank's first item of the named frame (execute()).
 #pragma once
@@ -16,6 +16,7 @@
 #include <mpi.h>
 
 #include <chrono>
+#include <memory>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -26,8 +27,8 @@
 #include "distributed/mpi_workload.hpp"
 #include "distributed/owner_progress.hpp"
 #include "distributed/rank_stats.hpp"
-#include "distributed/rma_stealing.hpp"
 #include "distributed/rma_window.hpp"
+#include "distributed/window_protocol.hpp"
 
 namespace frontsteal::mpi {
 
@@ -47,19 +48,19 @@ class FrameRunner {
   FrameRunner(const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win, double owner_progress_us);
 
   void begin_frame(const std::string& scheduler);
-  void rma_frame(Frame& fr, RmaOwner& owner, RmaThief& thief, RangeList& log);
+  void rma_frame(Frame& fr, RangeList& log);
   void request_frame(Frame& fr, RangeList list, RangeList& log);
   void central_frame(Frame& fr);
   void static_frame(Frame& fr);
 
   // The rank's statistics, with the medians and their 95 % bootstrap intervals filled in.
   RankStats& finish_stats();
-  RmaActiveCount& active() { return active_; }
+  WindowProtocol& protocol() { return *protocol_; }
 
  private:
   void execute(Frame& fr, ItemId id);
   void stall(int frame);
-  void drain_rma(Frame& fr, RmaOwner& owner, RangeList& log);
+  void drain_rma(Frame& fr, RangeList& log);
   void drain_request(Frame& fr, RangeList list, RangeList& log);
   void serve_requests(RangeList* list, std::size_t* index = nullptr);
   void record_owner_op(Clock::duration d);
@@ -69,14 +70,13 @@ class FrameRunner {
   Workload& wl_;
   int rank_, ranks_;
   RmaWindow& win_;
-  RmaActiveCount active_;
+  std::unique_ptr<WindowProtocol> protocol_;
   OwnerProgress progress_;
   // The request owner's poll: every item when the rma owner needs no progress calls (Open MPI's osc/sm),
   // else at the same interval (--owner-progress): over TCP a poll costs ~4-5 us, and polling after every
   // 1 us item was measured to leave requests unanswered until the owner ran dry (docs/mpi.md, "Two hosts").
   PollGate request_poll_;
   std::vector<int> victims_;
-  Defect defects_ = Defect::kNone;
   RankStats stats_;
   std::vector<float> owner_samples_;
   std::vector<double> steal_latencies_us_;

@@ -2,7 +2,8 @@
 // rank holding the read-only workload (mpi_workload.hpp) and running its items of each frame under four
 // schedulers (frame_runner.hpp: rma, request, central, static), every frame audited (scheduler_run.hpp), the
 // results reported by rank 0 (mpi_report.hpp); --calibrate measures the one-sided latencies (calibration.hpp).
-// The protocol itself: rma_stealing.hpp over rma_window.hpp; the transport's progress: owner_progress.hpp.
+// The protocol itself: core/stealing_protocol.hpp over rma_backend.hpp (window_protocol.hpp); the
+// transport's progress: owner_progress.hpp.
 #include <mpi.h>
 
 #include <algorithm>

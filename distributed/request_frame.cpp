@@ -10,7 +10,7 @@ namespace frontsteal::mpi {
 void FrameRunner::request_frame(Frame& fr, RangeList list, RangeList& log) {
   log.clear();
   drain_request(fr, list, log);
-  active_.leave();  // A2
+  protocol_->leave();  // A2
   const auto idle_start = Clock::now();
   const double busy_before = stats_.busy_s;
   int outstanding = -1;
@@ -20,7 +20,7 @@ void FrameRunner::request_frame(Frame& fr, RangeList list, RangeList& log) {
   while (true) {
     serve_requests(nullptr);
     if (outstanding < 0) {
-      if (active_.all_idle()) break;  // A3
+      if (protocol_->all_idle()) break;  // A3
       if (victims_.empty()) continue;
       outstanding = victims_[next_victim++ % victims_.size()];
       const std::int32_t frame = fr.f;
@@ -51,7 +51,7 @@ void FrameRunner::request_frame(Frame& fr, RangeList list, RangeList& log) {
     RangeList share;
     for (int i = 0; i + 1 < words; i += 2) share.push_back({buf[i], buf[i + 1]});
     drain_request(fr, std::move(share), log);
-    active_.leave();  // A2 (the victim joined for us, A1, before it replied)
+    protocol_->leave();  // A2 (the victim joined for us, A1, before it replied)
   }
   stats_.idle_s += std::chrono::duration<double>(Clock::now() - idle_start).count() - (stats_.busy_s - busy_before);
   // Frame end: every rank arrives with no outstanding request; answer stragglers until all have arrived.
@@ -122,7 +122,7 @@ void FrameRunner::serve_requests(RangeList* list, std::size_t* index) {
     const std::vector<std::uint32_t> reply = list != nullptr
                                                  ? split_off_share(*list, *index, o_.defect == "request-keeps-share")
                                                  : std::vector<std::uint32_t>{};
-    if (!reply.empty()) active_.join();  // A1 on the thief's behalf, before the share leaves (I-T)
+    if (!reply.empty()) protocol_->join();  // A1 on the thief's behalf, before the share leaves (I-T)
     check_mpi(
         MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_UINT32_T, st.MPI_SOURCE, kTagReply, MPI_COMM_WORLD),
         "MPI_Send");

@@ -1,5 +1,6 @@
 // rma_window.hpp — one MPI-3 window per run holding every rank's thief-visible stealing state, and the few
 // one-sided operations the distributed protocols use (each completed with MPI_Win_flush, each counted in bytes).
+// core/'s protocol reaches it through rma_backend.hpp, which maps each word of core/state_home.hpp to a field here.
 //
 // Layout of every rank's part of the window (byte displacements, disp_unit 1). It mirrors ActivitySlot
 // (core/activity_list.hpp): Front, ListTransient and End share a line; LockList has its own; then the list body.
@@ -10,10 +11,10 @@
 //                                  MPI_NO_OP L1, MPI_Accumulate MPI_REPLACE L3), by thieves and by the owner
 //                                  on itself: the standard makes only same-type accumulates atomic with each
 //                                  other, so this word is never touched by a plain load, store, Get or Put
-//   128  active              i32   rank 0's copy only: the termination count (A1-A3, E4), accumulates only
+//   128  active              u32   rank 0's copy only: the termination count (A1-A3, E4), accumulates only
 //   136  next item           u64   rank 0's copy only: the central-counter baseline, accumulates only
 //   192  entry count         u32   owner writes locally at install, under its own LockList; thieves MPI_Get
-//   256  entries[capacity]   {begin, end, flat_begin} u32 x 3 each, same ownership as the entry count
+//   256  entries[capacity]   SegmentEntry {begin, end, flat_begin} u32 x 3 each, same ownership as the entry count
 //
 // MPI GUARANTEES RELIED ON (MPI 3.1 §11.4, §11.5, §11.7)
 //   G1  Passive target: MPI_Win_lock_all once at start, MPI_Win_unlock_all at the end; every RMA operation is
@@ -55,7 +56,9 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
+#include "core/activity_list.hpp"
 #include "core/id_range.hpp"
 
 namespace frontsteal::mpi {
@@ -86,19 +89,16 @@ inline constexpr WinField<std::uint32_t> kFront{0};
 inline constexpr WinField<std::uint32_t> kTransient{4};
 inline constexpr WinField<std::uint32_t> kEnd{8};
 inline constexpr WinField<std::uint32_t> kLock{64};
-inline constexpr WinField<std::int32_t> kActive{128};
+inline constexpr WinField<std::uint32_t> kActive{128};
 inline constexpr WinField<std::uint64_t> kNextItem{136};
 inline constexpr WinField<std::uint32_t> kEntryCount{192};
 inline constexpr MPI_Aint kEntries = 256;
 
-// One list entry as it lies in the window: a range of ids and the flat position of its first id.
-struct WinEntry {
-  std::uint32_t begin = 0;
-  std::uint32_t end = 0;
-  std::uint32_t flat_begin = 0;
-  std::uint32_t flat_end() const noexcept { return flat_begin + (end - begin); }
-};
-static_assert(sizeof(WinEntry) == 12);
+// A list entry lies in the window as core's SegmentEntry (activity_list.hpp): three u32, no padding.
+static_assert(sizeof(SegmentEntry) == 12 && std::is_trivially_copyable_v<SegmentEntry>);
+inline constexpr MPI_Aint entry_disp(std::uint32_t index) noexcept {
+  return kEntries + static_cast<MPI_Aint>(index) * static_cast<MPI_Aint>(sizeof(SegmentEntry));
+}
 
 // Throws with the MPI error string: the window is created with MPI_ERRORS_RETURN so a dead peer becomes an
 // error we can report (and exit non-zero on) instead of an abort with no context.
@@ -114,12 +114,13 @@ inline void check_mpi(int rc, const char* what) {
 class RmaWindow {
  public:
   RmaWindow(MPI_Comm comm, std::uint32_t capacity) : capacity_(capacity) {
-    const MPI_Aint bytes = kEntries + static_cast<MPI_Aint>(capacity) * static_cast<MPI_Aint>(sizeof(WinEntry));
+    const MPI_Aint bytes = kEntries + static_cast<MPI_Aint>(capacity) * static_cast<MPI_Aint>(sizeof(SegmentEntry));
     MPI_Info info;
     MPI_Info_create(&info);
     // Every accumulate on a location uses one datatype and op family: let the implementation use hardware
     // (or shared-memory) atomics for them.
     MPI_Info_set(info, "accumulate_ordering", "none");
+    MPI_Comm_rank(comm, &rank_);
     check_mpi(MPI_Win_allocate(bytes, 1, info, comm, &base_, &win_), "MPI_Win_allocate");
     MPI_Info_free(&info);
     MPI_Win_set_errhandler(win_, MPI_ERRORS_RETURN);
@@ -139,6 +140,7 @@ class RmaWindow {
   }
 
   bool unified() const noexcept { return unified_; }
+  int rank() const noexcept { return rank_; }  // this process's rank in the window's communicator
   MPI_Win handle() const noexcept { return win_; }
   std::uint32_t capacity() const noexcept { return capacity_; }
   std::uint64_t bytes_moved() const noexcept { return bytes_; }
@@ -148,7 +150,10 @@ class RmaWindow {
   std::atomic_ref<T> local(WinField<T> f) noexcept {
     return std::atomic_ref<T>(*reinterpret_cast<T*>(static_cast<char*>(base_) + f.disp));
   }
-  WinEntry* local_entries() noexcept { return reinterpret_cast<WinEntry*>(static_cast<char*>(base_) + kEntries); }
+  SegmentEntry* local_entries() noexcept {
+    return reinterpret_cast<SegmentEntry*>(static_cast<char*>(base_) + kEntries);
+  }
+  void* local_bytes(MPI_Aint disp) noexcept { return static_cast<char*>(base_) + disp; }
   void sync() { check_mpi(MPI_Win_sync(win_), "MPI_Win_sync"); }  // G3
 
   // ---- one-sided operations on any rank's part (G1: each is flushed before it returns) ----
@@ -189,13 +194,17 @@ class RmaWindow {
               "MPI_Accumulate");
     completed(rank, sizeof(T), 0);
   }
-  void get_entries(int rank, std::uint32_t first, std::uint32_t count, WinEntry* out) {
+  void get_entries(int rank, std::uint32_t first, std::uint32_t count, SegmentEntry* out) {
     if (count == 0) return;
     const int ints = static_cast<int>(count * 3);
-    check_mpi(
-        MPI_Get(out, ints, MPI_UINT32_T, rank, kEntries + static_cast<MPI_Aint>(first) * 12, ints, MPI_UINT32_T, win_),
-        "MPI_Get entries");
-    completed(rank, count * sizeof(WinEntry), 0);
+    check_mpi(MPI_Get(out, ints, MPI_UINT32_T, rank, entry_disp(first), ints, MPI_UINT32_T, win_), "MPI_Get entries");
+    completed(rank, count * sizeof(SegmentEntry), 0);
+  }
+  // `bytes` bytes at `disp` of `rank`'s part, as they lie (a list entry: core's SegmentEntry).
+  void get_bytes(int rank, MPI_Aint disp, void* out, std::size_t bytes) {
+    const int n = static_cast<int>(bytes);
+    check_mpi(MPI_Get(out, n, MPI_BYTE, rank, disp, n, MPI_BYTE, win_), "MPI_Get");
+    completed(rank, bytes, 0);
   }
   void flush(int rank) { check_mpi(MPI_Win_flush(rank, win_), "MPI_Win_flush"); }
 
@@ -223,6 +232,7 @@ class RmaWindow {
   void* base_ = nullptr;
   MPI_Win win_ = MPI_WIN_NULL;
   std::uint32_t capacity_;
+  int rank_ = 0;
   bool unified_ = false;
   bool read_before_flush_ = false;
   std::uint64_t bytes_ = 0;

@@ -44,8 +44,10 @@ bool audit_frame(const std::string& name, const Workload& wl, int f, const std::
 bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win,
                    double owner_progress_us, SchedulerResult& result) {
   FrameRunner runner(o, wl, rank, ranks, win, owner_progress_us);
-  RmaOwner owner(win, rank, o.owner_fence == "win-sync");
-  RmaThief thief(win, runner.active());
+  if (rank == 0 && name == "rma") {  // always: which code ran is part of every result
+    std::fprintf(stderr, "%s: rma: core/stealing_protocol.hpp over the %s backend, policy %s\n", kProgram.data(),
+                 runner.protocol().backend_name().data(), runner.protocol().policy_name().data());
+  }
   std::vector<std::uint32_t> counts(wl.n), total(rank == 0 ? wl.n : 0);
   RangeList list = block_allocation(wl.n, static_cast<WorkerId>(ranks))[static_cast<std::size_t>(rank)];
   RangeList log;
@@ -60,10 +62,10 @@ bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int 
     set_phase("frame setup");
     std::fill(counts.begin(), counts.end(), 0u);
     // Between frames (every rank is past the previous frame's done barrier): install, re-arm, reset.
-    if (name == "rma") owner.install(list);
+    if (name == "rma") runner.protocol().install(list);
     if (rank == 0) {
-      runner.active().rearm(ranks);                            // E4
-      win.accumulate_replace(0, kNextItem, std::uint64_t{0});  // central counter
+      runner.protocol().rearm(static_cast<std::uint32_t>(ranks));  // E4
+      win.accumulate_replace(0, kNextItem, std::uint64_t{0});      // central counter
     }
     win.sync();
     MPI_Barrier(MPI_COMM_WORLD);  // frame start (E1/E2)
@@ -73,7 +75,7 @@ bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int 
     Frame fr{f, &counts};
     runner.begin_frame(name);
     if (name == "rma") {
-      runner.rma_frame(fr, owner, thief, log);
+      runner.rma_frame(fr, log);
       list = log;
     } else if (name == "request") {
       runner.request_frame(fr, list, log);
@@ -108,8 +110,8 @@ bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int 
   result.noise = noise.finish();
   RankStats& stats = runner.finish_stats();
   stats.bytes += static_cast<double>(win.bytes_moved()) - bytes_before;
-  stats.t4_wait_s = thief.t4_wait_s();
-  stats.t4_spins = static_cast<double>(thief.t4_spins());
+  stats.t4_wait_s = runner.protocol().t4_wait_s();
+  stats.t4_spins = static_cast<double>(runner.protocol().t4_polls());
   result.ranks.resize(rank == 0 ? static_cast<std::size_t>(ranks) : 0);
   MPI_Gather(&stats, kRankStatFields, MPI_DOUBLE, rank == 0 ? result.ranks.data() : nullptr, kRankStatFields,
              MPI_DOUBLE, 0, MPI_COMM_WORLD);

@@ -14,7 +14,7 @@ constexpr std::uint32_t kFrontMark = 0xF00D0000u;
 constexpr std::uint32_t kLockMark = 0x10C00000u;
 constexpr std::uint32_t kCountMark = 0xC0DE0000u;
 constexpr std::uint32_t kPutMark = 0xABCD0000u;
-constexpr std::int32_t kActiveBase = 1000;
+constexpr std::uint32_t kActiveBase = 1000;
 constexpr std::uint64_t kNextItemBase = 0x5EED00000000ull;  // beyond 32 bits: the 64-bit path is checked
 constexpr std::uint32_t kEntryMark = 0xE0000000u;
 
@@ -51,7 +51,7 @@ WindowSelfTest run_window_self_test(RmaWindow& win, MPI_Comm comm) {
   // Known values: local stores for the owner-written words, an accumulate for the accumulate-only lock word.
   win.local(kFront).store(kFrontMark + u(me), std::memory_order_relaxed);
   win.local(kEntryCount).store(kCountMark + u(me), std::memory_order_relaxed);
-  win.local_entries()[0] = WinEntry{kEntryMark + u(me), kEntryMark + u(me) + 7, u(me)};
+  win.local_entries()[0] = SegmentEntry{{kEntryMark + u(me), kEntryMark + u(me) + 7}, u(me)};
   win.accumulate_replace(me, kLock, kLockMark + u(me));
   if (me == 0) {
     win.accumulate_replace(0, kActive, kActiveBase);
@@ -69,12 +69,12 @@ WindowSelfTest run_window_self_test(RmaWindow& win, MPI_Comm comm) {
       expect.equal("MPI_Compare_and_swap of LockList (L2)", q,
                    win.compare_and_swap(q, kLock, kLockMark + u(q), kLockMark + u(q)), kLockMark + u(q));
       win.put(q, kEnd, kPutMark + u(t));
-      WinEntry entry{};
+      SegmentEntry entry{};
       win.get_entries(q, 0, 1, &entry);
-      expect.equal("MPI_Get of the list body (entry 0's begin)", q, entry.begin, kEntryMark + u(q));
+      expect.equal("MPI_Get of the list body (entry 0's begin)", q, entry.ids.begin, kEntryMark + u(q));
       expect.equal("MPI_Get of the list body (entry 0's flat_begin)", q, entry.flat_begin, u(q));
-      const std::int32_t before = win.fetch_and_op(0, kActive, std::int32_t{1}, MPI_SUM);
-      expect.equal("MPI_Fetch_and_op(MPI_SUM) of the active count (A1)", 0, before, kActiveBase + t);
+      const std::uint32_t before = win.fetch_and_op(0, kActive, std::uint32_t{1}, MPI_SUM);
+      expect.equal("MPI_Fetch_and_op(MPI_SUM) of the active count (A1)", 0, before, kActiveBase + u(t));
       const std::uint64_t next = win.fetch_and_op(0, kNextItem, std::uint64_t{3}, MPI_SUM);
       expect.equal("MPI_Fetch_and_op(MPI_SUM) of the central counter (64-bit)", 0, next,
                    kNextItemBase + 3 * static_cast<std::uint64_t>(t));
@@ -91,16 +91,16 @@ WindowSelfTest run_window_self_test(RmaWindow& win, MPI_Comm comm) {
   }
   MPI_Barrier(comm);
   if (me == 0)
-    expect.equal("the active count after every rank's MPI_SUM", 0, win.atomic_read(0, kActive), kActiveBase + ranks);
+    expect.equal("the active count after every rank's MPI_SUM", 0, win.atomic_read(0, kActive), kActiveBase + u(ranks));
 
   // Everything back to zero, as the window was created.
   win.local(kFront).store(0u, std::memory_order_relaxed);
   win.local(kEnd).store(0u, std::memory_order_relaxed);
   win.local(kEntryCount).store(0u, std::memory_order_relaxed);
-  win.local_entries()[0] = WinEntry{};
+  win.local_entries()[0] = SegmentEntry{};
   win.accumulate_replace(me, kLock, 0u);
   if (me == 0) {
-    win.accumulate_replace(0, kActive, std::int32_t{0});
+    win.accumulate_replace(0, kActive, std::uint32_t{0});
     win.accumulate_replace(0, kNextItem, std::uint64_t{0});
   }
   win.sync();
