@@ -145,6 +145,14 @@ void FrameRunner::central_frame(Frame& fr) {
   }
 }
 
+// ---- static by space: this rank's contiguous block of ids (a cluster renderer's screen or object region) ----
+void FrameRunner::static_space_frame(Frame& fr) {
+  const RangeList mine = block_allocation(wl_.n, static_cast<WorkerId>(ranks_))[static_cast<std::size_t>(rank_)];
+  for (const IdRange& r : mine) {
+    for (ItemId id = r.begin; id < r.end; ++id) execute(fr, id);
+  }
+}
+
 // ---- static round robin ----
 void FrameRunner::static_frame(Frame& fr) {
   for (std::uint64_t id = static_cast<std::uint64_t>(rank_); id < wl_.n; id += static_cast<std::uint64_t>(ranks_)) {

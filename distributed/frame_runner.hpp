@@ -7,6 +7,7 @@
 //             items and replies with the second half of its remaining list.
 //   central   a central counter in rank 0's window (MPI_Fetch_and_op), grain N/(100P) as §4.1.
 //   static    static round robin over ranks (§3), no communication.
+//   static-space  static contiguous blocks of ids (regions of space, as a cluster renderer assigns them).
 // TERMINATION inside a frame: the active count of core/active_workers.hpp (I-T) in rank 0's window
 // (WindowProtocol's): not a master, rank 0 runs no code for it (passive target). The request scheduler ends its
 // frame with MPI_Ibarrier while still answering requests (empty), so no request is left unanswered.
@@ -52,6 +53,7 @@ class FrameRunner {
   void request_frame(Frame& fr, RangeList list, RangeList& log);
   void central_frame(Frame& fr);
   void static_frame(Frame& fr);
+  void static_space_frame(Frame& fr);
 
   // The rank's statistics, with the medians and their 95 % bootstrap intervals filled in.
   RankStats& finish_stats();

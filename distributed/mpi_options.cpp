@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "core/id_range.hpp"
+#include "distributed/synthetic_cost.hpp"
 #include "reporting/command_line.hpp"
 
 namespace frontsteal::mpi {
@@ -12,7 +13,7 @@ namespace {
 
 constexpr const char* kDescription = R"(usage: mpirun -np P frontsteal-mpi [options]
 
-Runs the frame loop across MPI ranks under each scheduler (rma, request, central, static), audits every frame
+Runs the frame loop across MPI ranks under each scheduler (rma, request, central, static, static-space), audits every frame
 (each item executed exactly once, triangle count equal to a serial loop's) and prints a table per scheduler:
 frames/s, per-rank busy time, items, steals, mean steal latency, bytes moved, owner overhead per item; then
 medians with 95 % bootstrap confidence intervals and the noise monitor's verdict.
@@ -55,12 +56,10 @@ CLI::Validator scene_validator() {
   return CLI::Validator(
       [](std::string& v) -> std::string {
         if (v.empty()) return "needs a non-empty value";
-        if (v.rfind("synthetic:", 0) != 0) return {};
-        ItemId n = 0;
-        const std::string_view t = std::string_view(v).substr(10);
-        const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), n);
-        if (ec != std::errc{} || end != t.data() + t.size() || n < 1 || n > 50000000) {
-          return "synthetic:N needs N between 1 and 50000000, got '" + v + "'";
+        const SyntheticScene s = parse_synthetic_scene(v);
+        if (!s.synthetic) return {};
+        if (s.items < 1 || s.items > 50000000) {
+          return s.prefix + ":N needs N between 1 and 50000000, got '" + v + "'";
         }
         return {};
       },
@@ -94,14 +93,18 @@ Options parse_options(int argc, char** argv) {
   Options o;
   report::CommandLine cli(std::string(kProgram), kDescription, kFooter);
   cli.set_speaks(launcher_rank() == 0);  // every rank parses; rank 0 alone prints
-  cli.option("--scene", o.scene, "synthetic:N | teapot | teacup | teaspoon | plant:N[:seed] | model file")
+  cli.option("--scene", o.scene,
+             "synthetic:N (a moving heavy fifth) | cascade:N (cost concentrated in space, synthetic_cost.hpp) | "
+             "teapot | teacup | teaspoon | plant:N[:seed] | model file")
       ->check(scene_validator());
   cli.option("--frames", o.frames, "frames along the camera path")->check(CLI::Range(1, 100000));
   cli.app()
-      .add_option("--schedulers", o.schedulers, "comma list of rma,request,central,static")
+      .add_option("--schedulers", o.schedulers,
+                  "comma list of rma,request,central,static (round robin),static-space (contiguous blocks of ids: "
+                  "regions of space)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"rma", "request", "central", "static"}));
-  cli.option("--work-ns", o.work_ns, "synthetic: cost of a light item in ~ns of busy work")
+      ->check(CLI::IsMember({"rma", "request", "central", "static", "static-space"}));
+  cli.option("--work-ns", o.work_ns, "synthetic: cost of a light item (cascade: of the mean item) in ~ns of busy work")
       ->check(CLI::Range(0u, 100000000u));
   cli.option("--skew", o.skew, "synthetic: the heavy fifth of the ids (a window that moves each frame) costs K x")
       ->check(CLI::Range(1u, 10000u));

@@ -18,7 +18,7 @@ inline constexpr int kWatchdogExitCode = 86;  // as stress/watchdog.hpp: distinc
 struct Options {
   std::string scene = "synthetic:20000";
   int frames = 30;
-  std::vector<std::string> schedulers{"rma", "request", "central", "static"};
+  std::vector<std::string> schedulers{"rma", "request", "central", "static", "static-space"};
   std::uint32_t work_ns = 2000;
   std::uint32_t skew = 20;
   double tolerance = 1.0;

@@ -14,16 +14,16 @@ std::uint32_t synthetic_triangles(int frame, ItemId id) {
   return static_cast<std::uint32_t>((id * 2654435761u ^ static_cast<std::uint32_t>(frame) * 40503u) % 97u + 1u);
 }
 
-void build_synthetic(const Options& o, Workload& wl) {
-  wl.kind = "synthetic";
-  wl.n = static_cast<ItemId>(std::stoul(o.scene.substr(10)));  // checked by parse_options()
-  const ItemId n = wl.n;
-  const std::uint32_t light = o.work_ns, heavy_cost = o.work_ns * o.skew;
-  wl.run = [n, light, heavy_cost](int f, ItemId id) {
-    spin_work(synthetic_heavy(f, id, n) ? heavy_cost : light);
+void build_synthetic(const Options& o, const SyntheticScene& scene, Workload& wl) {
+  wl.kind = scene.prefix;
+  wl.n = static_cast<ItemId>(scene.items);  // checked by parse_options()
+  wl.cost.emplace(scene.shape, wl.n, o.frames, o.skew);
+  const double unit_ns = o.work_ns;
+  wl.run = [&wl, unit_ns](int f, ItemId id) {
+    spin_work(static_cast<std::uint32_t>(wl.cost->units(f, id) * unit_ns + 0.5));
     return synthetic_triangles(f, id);
   };
-  wl.serial_triangles = [n](int f) {
+  wl.serial_triangles = [n = wl.n](int f) {
     std::uint64_t t = 0;
     for (ItemId id = 0; id < n; ++id) t += synthetic_triangles(f, id);
     return t;
@@ -33,8 +33,8 @@ void build_synthetic(const Options& o, Workload& wl) {
 }  // namespace
 
 void build_workload(const Options& o, int rank, Workload& wl) {
-  if (o.scene.rfind("synthetic:", 0) == 0) {
-    build_synthetic(o, wl);
+  if (const SyntheticScene s = parse_synthetic_scene(o.scene); s.synthetic) {
+    build_synthetic(o, s, wl);
     return;
   }
   wl.kind = "tessellation";

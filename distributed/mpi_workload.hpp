@@ -1,5 +1,5 @@
 // mpi_workload.hpp — the read-only workload every rank builds identically: the tessellation scenes along the
-// camera path of frontsteal, or synthetic:N items whose heaviest fifth moves each frame.
+// camera path of frontsteal, or a synthetic cost shape (synthetic_cost.hpp: synthetic:N, cascade:N).
 #pragma once
 
 #include <cstdint>
@@ -18,7 +18,7 @@ namespace frontsteal::mpi {
 
 struct Workload {
   ItemId n = 0;
-  std::string kind;                                          // "synthetic" or "tessellation"
+  std::string kind;                                          // "synthetic", "cascade" or "tessellation"
   std::function<std::uint32_t(int frame, ItemId id)> run;    // executes item id of frame f; its triangles
   std::function<std::uint64_t(int frame)> serial_triangles;  // the serial loop's count for frame f (rank 0)
   // Tessellation (empty for synthetic): the scene along frontsteal's default path (tessellate/path_scene.hpp);
@@ -26,6 +26,7 @@ struct Workload {
   tess::PathScene scene;
   std::optional<tess::FrameWorkload> frames;  // over scene
   std::vector<std::uint64_t> serial;          // per frame, the serial loop's triangles (rank 0)
+  std::optional<SyntheticCost> cost;          // synthetic shapes: every item's cost, every frame
 };
 
 // Fills wl (in place: its closures point into it). Rank 0 also runs the serial reference loop.

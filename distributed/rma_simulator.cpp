@@ -36,14 +36,22 @@ struct Rank {
 class Model {
  public:
   Model(Scheduler s, int p, const Workload& w, const Latencies& lat, std::uint64_t seed, Defect d)
-      : s_(s), p_(p), w_(w), lat_(lat), defect_(d), ranks_(static_cast<std::size_t>(p)), audit_(w.items) {
+      : s_(s),
+        p_(p),
+        w_(w),
+        lat_(lat),
+        defect_(d),
+        cost_(w.shape, w.items, w.frames, w.skew),
+        ranks_(static_cast<std::size_t>(p)),
+        audit_(w.items) {
     std::vector<std::vector<ItemId>> blocks = simulation::contiguous_blocks(w.items, static_cast<std::uint32_t>(p));
     for (int r = 0; r < p; ++r) {
       Rank& k = ranks_[static_cast<std::size_t>(r)];
       std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(r));
       k.victims = simulation::victim_order(r, p, rng);
-      k.list = std::move(blocks[static_cast<std::size_t>(r)]);
+      k.list = blocks[static_cast<std::size_t>(r)];
     }
+    space_blocks_ = std::move(blocks);
   }
 
   Result run() {
@@ -52,7 +60,8 @@ class Model {
     res.ranks = p_;
     for (int f = 0; f < w_.frames && res.exactly_once; ++f) {
       frame_ = f;
-      const double t = s_ == Scheduler::kStatic ? static_frame() : event_frame();
+      const bool fixed = s_ == Scheduler::kStatic || s_ == Scheduler::kStaticSpace;
+      const double t = fixed ? static_frame() : event_frame();
       res.time_ns += t + barrier_ns();
       audit(res);
     }
@@ -68,7 +77,7 @@ class Model {
   }
 
  private:
-  double cost(int f, ItemId id) const { return synthetic_heavy(f, id, w_.items) ? w_.light_ns * w_.skew : w_.light_ns; }
+  double cost(int f, ItemId id) const { return cost_.units(f, id) * w_.light_ns; }
   double one_way() const { return lat_.ping_pong / 2; }
   double barrier_ns() const { return 2 * std::ceil(std::log2(std::max(2, p_))) * one_way(); }
   Rank& at(int r) { return ranks_[static_cast<std::size_t>(r)]; }
@@ -101,9 +110,16 @@ class Model {
     for (int r = 0; r < p_; ++r) {
       double t = 0;
       at(r).executed.clear();
-      for (ItemId id = static_cast<ItemId>(r); id < w_.items; id += static_cast<ItemId>(p_)) {
-        t += cost(frame_, id);
-        at(r).executed.push_back(id);
+      if (s_ == Scheduler::kStaticSpace) {
+        for (ItemId id : space_blocks_[static_cast<std::size_t>(r)]) {
+          t += cost(frame_, id);
+          at(r).executed.push_back(id);
+        }
+      } else {
+        for (ItemId id = static_cast<ItemId>(r); id < w_.items; id += static_cast<ItemId>(p_)) {
+          t += cost(frame_, id);
+          at(r).executed.push_back(id);
+        }
       }
       worst = std::max(worst, t);
     }
@@ -361,7 +377,9 @@ class Model {
   Workload w_;
   Latencies lat_;
   Defect defect_;
+  SyntheticCost cost_;
   std::vector<Rank> ranks_;
+  std::vector<std::vector<ItemId>> space_blocks_;  // static-space: each rank's contiguous block
   int frame_ = 0;
   std::int64_t active_ = 0;
   std::uint64_t next_item_ = 0, steals_ = 0, attempts_ = 0, remote_ops_ = 0;

@@ -4,8 +4,9 @@
 // prediction of the model, labelled SIMULATED with the latencies used; none is a measurement.
 //
 // THE MODEL (one event per item boundary and per one-sided operation, processed in time order):
-//   items       the synthetic skewed workload of frontsteal-mpi (synthetic_cost.hpp): light `light_ns`, the
-//               moving heavy fifth `skew` x; lists carry over between frames (§4.2.1) as in frontsteal-mpi.
+//   items       a synthetic cost shape of frontsteal-mpi (synthetic_cost.hpp, priced identically): skewed (light
+//               `light_ns`, the moving heavy fifth `skew` x) or cascade (cost concentrated in space, mean
+//               `light_ns`); lists carry over between frames (§4.2.1) as in frontsteal-mpi.
 //   rma         the owner pays `claim` per item (+ `progress_call`, at most every `progress_every`, when the
 //               transport needs target progress);
 //               a thief runs the protocol's operations in order — L1 fetch-op, L2 CAS, T1 get, T2 get, the
@@ -16,7 +17,7 @@
 //               travels half a ping-pong, waits for the victim's next poll (an idle victim answers at once), the reply
 //               (second half of the list, and A1 on rank 0 paid by the victim) travels the other half.
 //   central     a fetch-and-op on rank 0 per grain of N/(100P) items.
-//   static      round robin, no communication.
+//   static      round robin, no communication; static-space: contiguous blocks of ids (regions of space).
 //   termination A3 (a fetch-op read of rank 0's count) before every round of steal attempts; backoff as the
 //               real idle loop (yield x3, then 1, 2, 4 ... 256 us).
 //   contention  every atomic (fetch-op, CAS) on a rank's words occupies that rank for `atomic_service`
@@ -38,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "distributed/synthetic_cost.hpp"
 #include "reporting/json.hpp"
 
 namespace frontsteal::mpi::sim {
@@ -60,12 +62,13 @@ struct Latencies {
 // operation it lacks. atomic_service = max(fetch_op - get, 50 ns): what an atomic costs beyond a plain get.
 Latencies latencies_from_calibration(const std::string& path);
 
-enum class Scheduler : std::uint8_t { kRma, kRequest, kCentral, kStatic };
+enum class Scheduler : std::uint8_t { kRma, kRequest, kCentral, kStatic, kStaticSpace };
 const char* to_string(Scheduler s) noexcept;
 
 enum class Defect : std::uint8_t { kNone, kSkipReread, kEmptyShare };
 
 struct Workload {
+  CostShape shape = CostShape::kSkewed;
   std::uint32_t items = 200000;
   double light_ns = 2000;
   std::uint32_t skew = 20;

@@ -30,6 +30,7 @@ const char* to_string(Scheduler s) noexcept {
     case Scheduler::kRequest: return "request";
     case Scheduler::kCentral: return "central";
     case Scheduler::kStatic: return "static";
+    case Scheduler::kStaticSpace: return "static-space";
   }
   return "?";
 }

@@ -36,7 +36,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, 4096))
       ->capture_default_str();
   cli.option("--items", w.items, "items per frame")->check(CLI::Range(16u, 10000000u));
-  cli.option("--work-ns", w.light_ns, "a light item's cost, ns")->check(CLI::Range(0.0, 1e9));
+  std::string shape = "skewed";
+  cli.option("--shape", shape,
+             "cost shape (synthetic_cost.hpp): skewed (frontsteal-mpi synthetic:N) | cascade (cascade:N, cost "
+             "concentrated in space)")
+      ->check(CLI::IsMember({"skewed", "cascade"}));
+  cli.option("--work-ns", w.light_ns, "a light item's cost (cascade: the mean item's), ns")
+      ->check(CLI::Range(0.0, 1e9));
   cli.option("--skew", w.skew, "the moving heavy fifth costs K x")->check(CLI::Range(1u, 10000u));
   cli.option("--frames", w.frames, "frames (lists carry over)")->check(CLI::Range(1, 1000));
   double progress_every_us = 50;
@@ -51,6 +57,10 @@ int main(int argc, char** argv) {
   cli.option("--plant-defect", defect, "negative control: none | skip-reread (rma thieves keep [mid, end))")
       ->check(CLI::IsMember({"none", "skip-reread"}));
   cli.parse(argc, argv);
+  w.shape = shape == "cascade" ? frontsteal::mpi::CostShape::kCascade : frontsteal::mpi::CostShape::kSkewed;
+  const std::string shape_text =
+      shape == "cascade" ? "cost cascade, mean " + report::fixed_text(w.light_ns, 0) + " ns"
+                         : "light " + report::fixed_text(w.light_ns, 0) + " ns, heavy fifth x" + std::to_string(w.skew);
   try {
     report::Table t({{"latencies", "latencies", false},
                      {"scheduler", "scheduler", false},
@@ -63,7 +73,8 @@ int main(int argc, char** argv) {
                      {"exactly_once", "audit", false}});
     report::Json doc = report::document("frontsteal-mpi-simulate", 1, "simulated", FRONTSTEAL_GIT_COMMIT);
     doc["simulated"] = true;
-    doc["workload"] = {{"items", w.items}, {"light_ns", w.light_ns}, {"skew", w.skew}, {"frames", w.frames}};
+    doc["workload"] = {
+        {"shape", shape}, {"items", w.items}, {"light_ns", w.light_ns}, {"skew", w.skew}, {"frames", w.frames}};
     doc["latencies"] = report::Json::array();
     bool audit_ok = true;
     for (const std::string& path : calibrations) {
@@ -71,8 +82,8 @@ int main(int argc, char** argv) {
       lat.progress_every = progress_every_us * 1e3;
       doc["latencies"].push_back(sim::latencies_json(lat));
       const std::string label = lat.needs_target_progress ? "tcp" : "shm";
-      for (sim::Scheduler s :
-           {sim::Scheduler::kRma, sim::Scheduler::kRequest, sim::Scheduler::kCentral, sim::Scheduler::kStatic}) {
+      for (sim::Scheduler s : {sim::Scheduler::kRma, sim::Scheduler::kRequest, sim::Scheduler::kCentral,
+                               sim::Scheduler::kStatic, sim::Scheduler::kStaticSpace}) {
         for (int p : ranks) {
           const sim::Result r =
               sim::simulate(s, p, w, lat, 1, defect == "skip-reread" ? sim::Defect::kSkipReread : sim::Defect::kNone);
@@ -92,15 +103,13 @@ int main(int argc, char** argv) {
     std::string latencies_text;
     for (const report::Json& l : doc["latencies"]) latencies_text += "  " + l.dump() + "\n";
     const std::string title = "SIMULATED (a discrete-event model, not a measurement): " + std::to_string(w.items) +
-                              " items/frame, light " + report::fixed_text(w.light_ns, 0) + " ns, heavy fifth x" +
-                              std::to_string(w.skew) + ", " + std::to_string(w.frames) +
+                              " items/frame, " + shape_text + ", " + std::to_string(w.frames) +
                               " frames\nlatencies used (ns):\n";
     std::printf("%s%s%s", title.c_str(), latencies_text.c_str(), t.terminal().c_str());
     if (!json.empty()) report::write_atomically(json, doc.dump(2) + "\n");
     if (!plots.empty()) {
       sim::write_efficiency_plot(plots, doc["rows"],
-                                 std::to_string(w.items) + " items/frame, light " + report::fixed_text(w.light_ns, 0) +
-                                     " ns, heavy fifth x" + std::to_string(w.skew) +
+                                 std::to_string(w.items) + " items/frame, " + shape_text +
                                      "; tcp = calibration over TCP (owner calls into MPI every " +
                                      report::fixed_text(progress_every_us, 0) + " us), shm = shared memory");
     }

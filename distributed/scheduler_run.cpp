@@ -82,6 +82,8 @@ bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int 
       list = log;
     } else if (name == "central") {
       runner.central_frame(fr);
+    } else if (name == "static-space") {
+      runner.static_space_frame(fr);
     } else {
       runner.static_frame(fr);
     }

@@ -52,7 +52,7 @@ TEST_CASE("no flags: the defaults the docs promise", "[distributed][options]") {
   const mpi::Options o = parse({});
   CHECK(o.scene == "synthetic:20000");
   CHECK(o.frames == 30);
-  CHECK(o.schedulers == std::vector<std::string>{"rma", "request", "central", "static"});
+  CHECK(o.schedulers == std::vector<std::string>{"rma", "request", "central", "static", "static-space"});
   CHECK(o.owner_progress == "auto");
   CHECK(o.owner_fence == "cpu");
   CHECK(o.defect == "none");

@@ -1,0 +1,25 @@
+#!/bin/bash
+# run_mpi_cascade_results.sh — regenerates results/distributed/'s cost-cascade results (cascade:N, a workload whose
+# cost concentrates in space: distributed/synthetic_cost.hpp): frontsteal-mpi at 2 and 4 ranks on one node with
+# every scheduler (np{2,4}_cascade20000_shm.*), and the SIMULATED 4-256 ranks from the committed calibrations
+# (simulated_cascade_4_256.*, plot in plots_simulated_cascade/). Needs a release build. ~3 minutes.
+#   scripts/run_mpi_cascade_results.sh [BUILD_DIR]      (from the repository root; default build/release)
+set -eu
+case "${1:-}" in -h|--help) sed -n '2,6p' "$0"; exit 0 ;; esac
+build=${1:-build/release}
+mpi=$build/distributed/frontsteal-mpi
+sim=$build/distributed/frontsteal-mpi-simulate
+out=results/distributed
+[ -x "$mpi" ] && [ -x "$sim" ] || { echo "run_mpi_cascade_results: build $build first (frontsteal-mpi, frontsteal-mpi-simulate)"; exit 2; }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+for np in 2 4; do
+  f=$out/np${np}_cascade20000_shm
+  echo "run_mpi_cascade_results: $np ranks"
+  { uptime; timeout 600 mpirun --oversubscribe --mca mpi_yield_when_idle 1 -np $np "$mpi" --scene cascade:20000 \
+      --frames 20 --watchdog-s 120 --json $f.json --markdown $f.md 2>&1; echo "exit status $?"; } > $f.txt
+done
+echo "run_mpi_cascade_results: SIMULATED"
+$sim --shape cascade --ranks 4,16,64,256 --calibration $out/calibration_np2_shm.json,$out/calibration_np2_tcp.json \
+  --json $out/simulated_cascade_4_256.json --markdown $out/simulated_cascade_4_256.md \
+  --plots $out/plots_simulated_cascade > $out/simulated_cascade_4_256.txt
+echo "run_mpi_cascade_results: done"
