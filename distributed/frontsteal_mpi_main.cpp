@@ -45,7 +45,8 @@ int run_all(const fm::Options& o, fm::Workload& wl, int rank, int ranks, fm::Rma
     }
   }
   MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  if (rank == 0 && status == 0) fm::report_results(o, {ranks, o.scene, wl.n, o.frames, progress}, results);
+  if (rank == 0 && status == 0)
+    fm::report_results(o, {ranks, o.scene, wl.n, o.frames, progress, o.work_ns, o.skew}, results);
   return status;
 }
 

@@ -20,6 +20,8 @@ struct RunSummary {
   unsigned items = 0;
   int frames = 0;
   ProgressChoice progress;
+  std::uint32_t work_ns = 0;  // synthetic shapes: ns per cost unit (--work-ns)
+  std::uint32_t skew = 0;     // synthetic:N's heavy fifth (--skew)
 };
 
 // Prints both tables and the noise line to stdout; writes --json and --markdown when asked.

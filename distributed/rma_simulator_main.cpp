@@ -2,12 +2,14 @@
 // and static round robin at 16, 64 and 256 ranks (and 2, 4 to set beside frontsteal-mpi's measurements),
 // from latencies that frontsteal-mpi --calibrate --json measured (rma_simulator.hpp: the model and what it
 // leaves out). Prints a table per calibration; --json and --markdown write the same, labelled SIMULATED.
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <string>
 #include <vector>
 
 #include "distributed/rma_simulator.hpp"
+#include "distributed/simulator_validation.hpp"
 #include "reporting/build_stamp.hpp"
 #include "reporting/command_line.hpp"
 #include "reporting/results_dir.hpp"
@@ -15,6 +17,63 @@
 
 namespace sim = frontsteal::mpi::sim;
 namespace report = frontsteal::report;
+
+namespace {
+
+// --validate: each measured run re-run in the model with the first calibration's latencies; ratios to static
+// round robin compared (simulator_validation.hpp). Returns the exit status.
+int run_validation(const std::string& calibration, const std::vector<std::string>& runs, const std::string& json,
+                   const std::string& markdown) {
+  constexpr double kWithin = 0.10;
+  const sim::Latencies lat = sim::latencies_from_calibration(calibration);
+  report::Table t({{"run", "measured run", false},
+                   {"ranks", "ranks"},
+                   {"scheduler", "scheduler", false},
+                   {"measured_ms", "measured ms/frame"},
+                   {"simulated_ms", "SIMULATED ms/frame"},
+                   {"measured_ratio", "measured / static"},
+                   {"simulated_ratio", "SIMULATED / static"},
+                   {"ratio_error_percent", "ratio error %"},
+                   {"within", "within 10 %", false}});
+  std::string notes;
+  int outside = 0, rows = 0;
+  bool audit_ok = true;
+  for (const std::string& path : runs) {
+    const sim::MeasuredRun run = sim::read_measured_run(path);
+    if (!run.assumed.empty()) notes += path + ": assumed " + run.assumed + "\n";
+    for (const sim::ValidationRow& r : sim::validate(run, lat)) {
+      const bool within = std::abs(r.ratio_error) <= kWithin;
+      if (r.scheduler != "static") {
+        ++rows;
+        if (!within) ++outside;
+      }
+      audit_ok = audit_ok && r.exactly_once;
+      t.add_row({path, run.ranks, r.scheduler, report::Cell::fixed(r.measured_ms, 2),
+                 report::Cell::fixed(r.simulated_ms, 2), report::Cell::fixed(r.measured_ratio, 3),
+                 report::Cell::fixed(r.simulated_ratio, 3), report::Cell::fixed(100 * r.ratio_error, 1),
+                 r.scheduler == "static" ? "reference"
+                 : within                ? "yes"
+                                         : "NO"});
+    }
+  }
+  const std::string answer = std::to_string(rows - outside) + " of " + std::to_string(rows) +
+                             " scheduler ratios within 10 % of the measured ones";
+  const std::string title = "SIMULATED against MEASURED: " + answer + " (latencies: " + lat.source +
+                            "; each scheduler's frame time relative to static round robin in the same run)\n";
+  std::printf("%s%s%s", title.c_str(), notes.c_str(), t.terminal().c_str());
+  if (!json.empty()) {
+    report::Json doc = report::document("frontsteal-mpi-simulate", 1, "simulated", FRONTSTEAL_GIT_COMMIT);
+    doc["contents"] = "validation";
+    doc["latencies"] = sim::latencies_json(lat);
+    doc["within_percent"] = 100 * kWithin;
+    doc["rows"] = t.json();
+    report::write_atomically(json, doc.dump(2) + "\n");
+  }
+  if (!markdown.empty()) report::write_atomically(markdown, "# " + title + "\n" + notes + "\n" + t.markdown());
+  return audit_ok ? 0 : 1;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> calibrations;
@@ -56,7 +115,23 @@ int main(int argc, char** argv) {
   cli.option("--markdown", markdown, "also write the results as markdown");
   cli.option("--plant-defect", defect, "negative control: none | skip-reread (rma thieves keep [mid, end))")
       ->check(CLI::IsMember({"none", "skip-reread"}));
+  std::vector<std::string> validate;
+  cli.app()
+      .add_option("--validate", validate,
+                  "measured runs (frontsteal-mpi --json, synthetic shapes, one rank per core) to re-run in the model "
+                  "with the first calibration: each scheduler's frame time relative to static round robin, "
+                  "SIMULATED against measured (comma list); the other workload options are then taken from the files")
+      ->delimiter(',')
+      ->check(CLI::ExistingFile);
   cli.parse(argc, argv);
+  if (!validate.empty()) {
+    try {
+      return run_validation(calibrations.front(), validate, json, markdown);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "frontsteal-mpi-simulate: %s\n", e.what());
+      return 1;
+    }
+  }
   w.shape = shape == "cascade" ? frontsteal::mpi::CostShape::kCascade : frontsteal::mpi::CostShape::kSkewed;
   const std::string shape_text =
       shape == "cascade" ? "cost cascade, mean " + report::fixed_text(w.light_ns, 0) + " ns"

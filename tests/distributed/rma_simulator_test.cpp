@@ -7,11 +7,13 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include "distributed/rma_simulator.hpp"
+#include "distributed/simulator_validation.hpp"
 
 namespace sim = frontsteal::mpi::sim;
 
@@ -119,4 +121,34 @@ TEST_CASE("the efficiency plot holds one line per latency set and scheduler", "[
   CHECK(d == "\"shm rma\"\n2 0.99\n16 0.9\n\n\n\"tcp static\"\n2 1\n\n\n");
   CHECK(fs::file_size(dir / "simulated-efficiency.png") > 1000);
   fs::remove_all(dir);
+}
+
+// The validation compares ratios to static round robin: a measured run that IS the model (its own frame times,
+// scaled by a machine factor every scheduler pays alike) is within 10 % everywhere; one scheduler measured 30 %
+// slower than the model says is outside, with the error's sign and size.
+TEST_CASE("the simulator's validation passes the model's own run and catches a planted 30 % slowdown",
+          "[rma_simulator]") {
+  sim::MeasuredRun run;
+  run.path = "planted";
+  run.ranks = 4;
+  run.workload = small();
+  run.workload.shape = frontsteal::mpi::CostShape::kCascade;
+  const sim::Latencies lat = shared_memory_like();
+  const double machine = 1.2;  // this machine's items are 20 % slower than nominal: cancels in every ratio
+  for (sim::Scheduler s : {sim::Scheduler::kRma, sim::Scheduler::kStatic, sim::Scheduler::kStaticSpace}) {
+    const sim::Result r = sim::simulate(s, run.ranks, run.workload, lat);
+    run.schedulers.push_back({sim::to_string(s), machine * r.time_ns / run.workload.frames / 1e6});
+  }
+  for (const sim::ValidationRow& row : sim::validate(run, lat)) {
+    INFO(row.scheduler);
+    CHECK(std::abs(row.ratio_error) < 1e-9);
+  }
+  run.schedulers[0].median_frame_ms *= 1.3;  // rma measured 30 % slower than the model
+  const std::vector<sim::ValidationRow> rows = sim::validate(run, lat);
+  REQUIRE(rows[0].scheduler == "rma");
+  CHECK(rows[0].ratio_error == Approx(1 / 1.3 - 1).epsilon(1e-9));
+  CHECK(std::abs(rows[0].ratio_error) > 0.10);
+  CHECK(std::abs(rows[2].ratio_error) < 1e-9);       // the others unchanged
+  run.schedulers.erase(run.schedulers.begin() + 1);  // no static round robin: nothing to relate to
+  CHECK_THROWS_WITH(sim::validate(run, lat), Catch::Contains("no static"));
 }
