@@ -47,6 +47,25 @@ void FrameRunner::execute(Frame& fr, ItemId id) {
     std::_Exit(3);
   }
   if (fr.f == o_.stall_frame && rank_ == o_.stall_rank) stall(fr.f);
+  if (fr.f == o_.slow_frame && rank_ == o_.slow_rank) start_slowdown(fr.f);
+}
+
+// --slow: this rank keeps running its items, stopped by the OS 9 ms of every 10 for slow_ms (os_slowdown.hpp).
+void FrameRunner::start_slowdown(int frame) {
+  std::fprintf(stderr, "%s: rank %d: --slow: slowed 10x by SIGSTOP/SIGCONT for %d ms from frame %d (%s)\n",
+               kProgram.data(), rank_, o_.slow_ms, frame, scheduler_->c_str());
+  if (*scheduler_ == "rma") slow_end_before_ = win_.local(kEnd).load(std::memory_order_acquire);
+  slowdown_.start(std::chrono::milliseconds(o_.slow_ms), 10);
+}
+
+// Under rma, once this rank's own list ran out in the slowed frame: did thieves lower its End meanwhile?
+void FrameRunner::report_slowdown() {
+  if (slow_end_before_ < 0) return;
+  const std::uint32_t end_after = win_.local(kEnd).load(std::memory_order_acquire);
+  std::fprintf(stderr, "%s: rank %d: --slow: %s while slowed (End %lld -> %u)\n", kProgram.data(), rank_,
+               end_after < slow_end_before_ ? "work was stolen" : "NOTHING was stolen",
+               static_cast<long long>(slow_end_before_), end_after);
+  slow_end_before_ = -1;
 }
 
 void FrameRunner::begin_frame(const std::string& scheduler) {
@@ -82,6 +101,7 @@ void FrameRunner::stall(int frame) {
 void FrameRunner::rma_frame(Frame& fr, RangeList& log) {
   log.clear();
   drain_rma(fr, log);
+  report_slowdown();
   protocol_->leave();  // A2: own list exhausted, every claimed item done
   StealHooks hooks;
   hooks.force_overlap = o_.force_overlap;

@@ -11,7 +11,7 @@
 // TERMINATION inside a frame: the active count of core/active_workers.hpp (I-T) in rank 0's window
 // (WindowProtocol's): not a master, rank 0 runs no code for it (passive target). The request scheduler ends its
 // frame with MPI_Ibarrier while still answering requests (empty), so no request is left unanswered.
-// FAULTS: --stall and --die act after the rank's first item of the named frame (execute()).
+// FAULTS: --stall, --slow and --die act after the rank's first item of the named frame (execute()).
 #pragma once
 
 #include <mpi.h>
@@ -26,6 +26,7 @@
 #include "core/policies.hpp"
 #include "distributed/mpi_options.hpp"
 #include "distributed/mpi_workload.hpp"
+#include "distributed/os_slowdown.hpp"
 #include "distributed/owner_progress.hpp"
 #include "distributed/rank_stats.hpp"
 #include "distributed/rma_window.hpp"
@@ -62,6 +63,8 @@ class FrameRunner {
  private:
   void execute(Frame& fr, ItemId id);
   void stall(int frame);
+  void start_slowdown(int frame);
+  void report_slowdown();
   void drain_rma(Frame& fr, RangeList& log);
   void drain_request(Frame& fr, RangeList list, RangeList& log);
   void serve_requests(RangeList* list, std::size_t* index = nullptr);
@@ -83,6 +86,8 @@ class FrameRunner {
   std::vector<float> owner_samples_;
   std::vector<double> steal_latencies_us_;
   bool first_item_done_ = false;
+  OsSlowdown slowdown_;
+  std::int64_t slow_end_before_ = -1;  // this rank's End when --slow began (rma), until reported
   const std::string* scheduler_ = nullptr;
 };
 

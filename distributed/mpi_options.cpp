@@ -116,8 +116,12 @@ Options parse_options(int argc, char** argv) {
              "per rank (PNG through gnuplot, with their data and script)");
   cli.option("--watchdog-s", o.watchdog_s, "a rank that makes no progress for S s exits 86 (0 = off)")
       ->check(CLI::Range(0.0, 86400.0));
-  std::string stall, die;
+  std::string stall, die, slow;
   cli.option("--stall", stall, "R:F:MS: rank R sleeps MS ms after its first item of frame F (fault test)")
+      ->check(integers_validator({1 << 20, 100000, 3600000}, "RANK:FRAME:MS"));
+  cli.option("--slow", slow,
+             "R:F:MS: rank R is slowed 10x by the OS for MS ms from its first item of frame F: a helper process "
+             "stops it (SIGSTOP) 9 ms of every 10 and lets it run (SIGCONT) 1 ms (fault test)")
       ->check(integers_validator({1 << 20, 100000, 3600000}, "RANK:FRAME:MS"));
   cli.option("--die", die, "R:F: rank R exits abruptly (status 3) after its first item of frame F (fault test)")
       ->check(integers_validator({1 << 20, 100000}, "RANK:FRAME"));
@@ -151,6 +155,10 @@ Options parse_options(int argc, char** argv) {
   if (!stall.empty()) {
     const auto p = split(stall, ':');
     o.stall_rank = std::stoi(p[0]), o.stall_frame = std::stoi(p[1]), o.stall_ms = std::stoi(p[2]);
+  }
+  if (!slow.empty()) {
+    const auto p = split(slow, ':');
+    o.slow_rank = std::stoi(p[0]), o.slow_frame = std::stoi(p[1]), o.slow_ms = std::stoi(p[2]);
   }
   if (!die.empty()) {
     const auto p = split(die, ':');

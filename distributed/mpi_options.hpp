@@ -28,6 +28,7 @@ struct Options {
   double watchdog_s = 60;
   int stall_rank = -1, stall_frame = -1, stall_ms = 0;
   int die_rank = -1, die_frame = -1;
+  int slow_rank = -1, slow_frame = -1, slow_ms = 0;  // --slow: SIGSTOP/SIGCONT duty cycle, 10x (os_slowdown.hpp)
   std::string defect = "none";
   bool force_overlap = false;
   bool calibrate = false;
