@@ -36,14 +36,7 @@ const char* to_string(Scheduler s) noexcept {
 }
 
 Latencies latencies_from_calibration(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read calibration file '" + path + "'");
-  report::Json doc;
-  try {
-    doc = report::Json::parse(in);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": not JSON: " + e.what());
-  }
+  const report::Json doc = report::read_document(path, "calibration file");
   if (doc.value("contents", "") != "calibration") throw std::runtime_error(path + ": not a calibration (contents)");
   Latencies l;
   l.get = operation_ns(doc, path, ops::kGet);

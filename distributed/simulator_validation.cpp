@@ -1,11 +1,11 @@
 // simulator_validation.cpp — the simulator against measured runs (simulator_validation.hpp).
 #include "distributed/simulator_validation.hpp"
 
-#include <fstream>
 #include <stdexcept>
 
 #include "distributed/mpi_options.hpp"
 #include "distributed/synthetic_cost.hpp"
+#include "reporting/results_dir.hpp"
 
 namespace frontsteal::mpi::sim {
 namespace {
@@ -24,14 +24,7 @@ bool scheduler_named(const std::string& name, Scheduler& out) {
 }  // namespace
 
 MeasuredRun read_measured_run(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read measured run '" + path + "'");
-  report::Json doc;
-  try {
-    doc = report::Json::parse(in);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": not JSON: " + e.what());
-  }
+  const report::Json doc = report::read_document(path, "measured run");
   if (doc.value("program", "") != "frontsteal-mpi" || !doc.value("measured", false) || !doc.contains("schedulers")) {
     throw std::runtime_error(path + ": not a measured frontsteal-mpi run (frontsteal-mpi --json)");
   }

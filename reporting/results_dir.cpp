@@ -34,6 +34,16 @@ std::string gnuplot_text(std::string_view s, bool break_after_semicolons) {
   return out;
 }
 
+Json read_document(const std::filesystem::path& path, std::string_view what) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + std::string(what) + " '" + path.string() + "'");
+  try {
+    return Json::parse(in);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path.string() + ": not JSON: " + e.what());
+  }
+}
+
 void write_atomically(const std::filesystem::path& path, std::string_view text) {
   const std::filesystem::path tmp = path.string() + ".tmp";
   {

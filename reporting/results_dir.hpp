@@ -22,6 +22,10 @@ std::string gnuplot_text(std::string_view s, bool break_after_semicolons = false
 // The common header of every results file: {schema_version, program, kind, commit}.
 Json document(std::string_view program, int schema_version, std::string_view kind, std::string_view commit);
 
+// Reads a results file back; throws std::runtime_error naming the file when it cannot be read ("cannot read
+// <what> '<path>'") or is not JSON ("<path>: not JSON: ...").
+Json read_document(const std::filesystem::path& path, std::string_view what);
+
 // Writes `text` to `path` through a temporary file renamed into place, so a failed run leaves no half-written
 // file; throws std::runtime_error naming the file when it cannot.
 void write_atomically(const std::filesystem::path& path, std::string_view text);

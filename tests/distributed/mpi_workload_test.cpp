@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <numeric>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "distributed/mpi_workload.hpp"
@@ -119,27 +120,19 @@ void check_serial_is_sum_of_items(mpi::Workload& wl, int frames) {
 
 }  // namespace
 
-TEST_CASE("the synthetic workload's serial count is the sum of its items", "[distributed][workload]") {
-  mpi::Options o;
-  o.scene = "synthetic:300";
-  o.work_ns = 0;
-  mpi::Workload wl;
-  mpi::build_workload(o, 0, wl);
-  CHECK(wl.kind == "synthetic");
-  REQUIRE(wl.n == 300);
-  check_serial_is_sum_of_items(wl, 3);
-}
-
-TEST_CASE("the cascade workload's serial count is the sum of its items", "[distributed][workload]") {
-  mpi::Options o;
-  o.scene = "cascade:300";
-  o.work_ns = 0;
-  mpi::Workload wl;
-  mpi::build_workload(o, 0, wl);
-  CHECK(wl.kind == "cascade");
-  REQUIRE(wl.n == 300);
-  REQUIRE(wl.cost.has_value());
-  check_serial_is_sum_of_items(wl, 3);
+TEST_CASE("each synthetic shape's serial count is the sum of its items", "[distributed][workload]") {
+  for (const char* shape : {"synthetic", "cascade"}) {
+    INFO(shape);
+    mpi::Options o;
+    o.scene = std::string(shape) + ":300";
+    o.work_ns = 0;
+    mpi::Workload wl;
+    mpi::build_workload(o, 0, wl);
+    CHECK(wl.kind == shape);
+    REQUIRE(wl.n == 300);
+    REQUIRE(wl.cost.has_value());
+    check_serial_is_sum_of_items(wl, 3);
+  }
 }
 
 TEST_CASE("the tessellation workload's serial reference is its own items, frame by frame", "[distributed][workload]") {
