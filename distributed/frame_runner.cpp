@@ -36,7 +36,9 @@ void FrameRunner::execute(Frame& fr, ItemId id) {
   const auto t0 = Clock::now();
   fr.triangles += wl_.run(fr.f, id);
   (*fr.counts)[id] += 1;
-  stats_.busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  const double took = std::chrono::duration<double>(Clock::now() - t0).count();
+  stats_.busy_s += took;
+  if (!item_costs_.empty()) item_costs_[id] = static_cast<float>(took);
   stats_.items += 1;
   note_progress();
   if (first_item_done_) return;
@@ -54,7 +56,7 @@ void FrameRunner::execute(Frame& fr, ItemId id) {
 void FrameRunner::start_slowdown(int frame) {
   std::fprintf(stderr, "%s: rank %d: --slow: slowed 10x by SIGSTOP/SIGCONT for %d ms from frame %d (%s)\n",
                kProgram.data(), rank_, o_.slow_ms, frame, scheduler_->c_str());
-  if (*scheduler_ == "rma") slow_end_before_ = win_.local(kEnd).load(std::memory_order_acquire);
+  if (scheduler_->rfind("rma", 0) == 0) slow_end_before_ = win_.local(kEnd).load(std::memory_order_acquire);
   slowdown_.start(std::chrono::milliseconds(o_.slow_ms), 10);
 }
 
@@ -71,6 +73,7 @@ void FrameRunner::report_slowdown() {
 void FrameRunner::begin_frame(const std::string& scheduler) {
   first_item_done_ = false;
   scheduler_ = &scheduler;
+  if (scheduler == "rma-seeded" && item_costs_.size() != wl_.n) item_costs_.assign(wl_.n, 0.0f);
 }
 
 // --stall: sleep MS ms between two items (never between O1 and O4). Under rma, also until a thief has
@@ -83,7 +86,7 @@ void FrameRunner::stall(int frame) {
   const auto start = Clock::now();
   const std::uint32_t end_before = win_.local(kEnd).load(std::memory_order_acquire);
   std::this_thread::sleep_for(std::chrono::milliseconds(o_.stall_ms));
-  if (*scheduler_ == "rma") {
+  if (scheduler_->rfind("rma", 0) == 0) {
     while (win_.local(kEnd).load(std::memory_order_acquire) == end_before &&
            Clock::now() - start < std::chrono::seconds(60)) {
       win_.sync();

@@ -8,6 +8,8 @@
 //   central   a central counter in rank 0's window (MPI_Fetch_and_op), grain N/(100P) as §4.1.
 //   static    static round robin over ranks (§3), no communication.
 //   static-space  static contiguous blocks of ids (regions of space, as a cluster renderer assigns them).
+//   rma-seeded  rma whose lists at each frame start are contiguous blocks of equal measured cost of the last
+//             frame (cost_seeded_lists.hpp) instead of what each rank processed.
 // TERMINATION inside a frame: the active count of core/active_workers.hpp (I-T) in rank 0's window
 // (WindowProtocol's): not a master, rank 0 runs no code for it (passive target). The request scheduler ends its
 // frame with MPI_Ibarrier while still answering requests (empty), so no request is left unanswered.
@@ -59,6 +61,8 @@ class FrameRunner {
   // The rank's statistics, with the medians and their 95 % bootstrap intervals filled in.
   RankStats& finish_stats();
   WindowProtocol& protocol() { return *protocol_; }
+  // rma-seeded: seconds each item of the current frame took on this rank (0 for items other ranks ran).
+  std::vector<float>& item_costs() { return item_costs_; }
 
  private:
   void execute(Frame& fr, ItemId id);
@@ -87,6 +91,7 @@ class FrameRunner {
   std::vector<double> steal_latencies_us_;
   bool first_item_done_ = false;
   OsSlowdown slowdown_;
+  std::vector<float> item_costs_;      // rma-seeded only, else empty
   std::int64_t slow_end_before_ = -1;  // this rank's End when --slow began (rma), until reported
   const std::string* scheduler_ = nullptr;
 };

@@ -100,10 +100,10 @@ Options parse_options(int argc, char** argv) {
   cli.option("--frames", o.frames, "frames along the camera path")->check(CLI::Range(1, 100000));
   cli.app()
       .add_option("--schedulers", o.schedulers,
-                  "comma list of rma,request,central,static (round robin),static-space (contiguous blocks of ids: "
-                  "regions of space)")
+                  "comma list of rma,rma-seeded (lists from the last frame's measured costs),request,central,"
+                  "static (round robin),static-space (contiguous blocks of ids: regions of space)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"rma", "request", "central", "static", "static-space"}));
+      ->check(CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space"}));
   cli.option("--work-ns", o.work_ns, "synthetic: cost of a light item (cascade: of the mean item) in ~ns of busy work")
       ->check(CLI::Range(0u, 100000000u));
   cli.option("--skew", o.skew, "synthetic: the heavy fifth of the ids (a window that moves each frame) costs K x")

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "distributed/cost_seeded_lists.hpp"
 #include "distributed/frame_runner.hpp"
 #include "distributed/noise_window.hpp"
 #include "distributed/rank_watchdog.hpp"
@@ -44,7 +45,8 @@ bool audit_frame(const std::string& name, const Workload& wl, int f, const std::
 bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win,
                    double owner_progress_us, SchedulerResult& result) {
   FrameRunner runner(o, wl, rank, ranks, win, owner_progress_us);
-  if (rank == 0 && name == "rma") {  // always: which code ran is part of every result
+  const bool rma = name == "rma" || name == "rma-seeded";
+  if (rank == 0 && rma) {  // always: which code ran is part of every result
     std::fprintf(stderr, "%s: rma: core/stealing_protocol.hpp over the %s backend, policy %s\n", kProgram.data(),
                  runner.protocol().backend_name().data(), runner.protocol().policy_name().data());
   }
@@ -62,7 +64,7 @@ bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int 
     set_phase("frame setup");
     std::fill(counts.begin(), counts.end(), 0u);
     // Between frames (every rank is past the previous frame's done barrier): install, re-arm, reset.
-    if (name == "rma") runner.protocol().install(list);
+    if (rma) runner.protocol().install(list);
     if (rank == 0) {
       runner.protocol().rearm(static_cast<std::uint32_t>(ranks));  // E4
       win.accumulate_replace(0, kNextItem, std::uint64_t{0});      // central counter
@@ -74,7 +76,7 @@ bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int 
     const auto t0 = Clock::now();
     Frame fr{f, &counts};
     runner.begin_frame(name);
-    if (name == "rma") {
+    if (rma) {
       runner.rma_frame(fr, log);
       list = log;
     } else if (name == "request") {
@@ -91,6 +93,15 @@ bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int 
     win.sync();
     MPI_Barrier(MPI_COMM_WORLD);  // frame done (E3/E6)
     note_progress();
+    // rma-seeded: the next lists are contiguous blocks of equal measured cost (cost_seeded_lists.hpp), from
+    // every rank's item times of this frame; the all-reduce is part of this frame's time.
+    if (name == "rma-seeded") {
+      std::vector<float>& mine = runner.item_costs();
+      std::vector<float> all(mine.size());
+      MPI_Allreduce(mine.data(), all.data(), static_cast<int>(mine.size()), MPI_FLOAT, MPI_SUM, MPI_COMM_WORLD);
+      list = cost_balanced_blocks(all, static_cast<WorkerId>(ranks))[static_cast<std::size_t>(rank)];
+      std::fill(mine.begin(), mine.end(), 0.0f);
+    }
     result.frame_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
     // The audit: counts and triangles reduced to rank 0, the verdict broadcast.
     set_phase("audit");

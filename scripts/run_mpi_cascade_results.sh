@@ -18,7 +18,8 @@ for np in 2 4; do
   f=$out/np${np}_cascade20000_shm
   echo "run_mpi_cascade_results: $np ranks"
   { uptime; timeout 600 mpirun --oversubscribe --mca mpi_yield_when_idle 1 -np $np "$mpi" --scene cascade:20000 \
-      --frames 20 --watchdog-s 120 --json $f.json --markdown $f.md 2>&1; echo "exit status $?"; } > $f.txt
+      --frames 20 --schedulers rma,rma-seeded,request,central,static,static-space --watchdog-s 120 \
+      --json $f.json --markdown $f.md 2>&1; echo "exit status $?"; } > $f.txt
 done
 f=$out/np2_synthetic20000_validation_shm
 echo "run_mpi_cascade_results: 2 ranks, synthetic:20000 (for the validation)"
