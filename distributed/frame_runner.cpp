@@ -56,7 +56,7 @@ void FrameRunner::execute(Frame& fr, ItemId id) {
 void FrameRunner::start_slowdown(int frame) {
   std::fprintf(stderr, "%s: rank %d: --slow: slowed 10x by SIGSTOP/SIGCONT for %d ms from frame %d (%s)\n",
                kProgram.data(), rank_, o_.slow_ms, frame, scheduler_->c_str());
-  if (scheduler_->rfind("rma", 0) == 0) slow_end_before_ = win_.local(kEnd).load(std::memory_order_acquire);
+  if (runs_window_protocol(*scheduler_)) slow_end_before_ = win_.local(kEnd).load(std::memory_order_acquire);
   slowdown_.start(std::chrono::milliseconds(o_.slow_ms), 10);
 }
 
@@ -86,7 +86,7 @@ void FrameRunner::stall(int frame) {
   const auto start = Clock::now();
   const std::uint32_t end_before = win_.local(kEnd).load(std::memory_order_acquire);
   std::this_thread::sleep_for(std::chrono::milliseconds(o_.stall_ms));
-  if (scheduler_->rfind("rma", 0) == 0) {
+  if (runs_window_protocol(*scheduler_)) {
     while (win_.local(kEnd).load(std::memory_order_acquire) == end_before &&
            Clock::now() - start < std::chrono::seconds(60)) {
       win_.sync();

@@ -36,6 +36,11 @@
 
 namespace frontsteal::mpi {
 
+// The schedulers that run core's protocol over the window (rma, and rma with cost-seeded lists).
+inline bool runs_window_protocol(const std::string& scheduler) {
+  return scheduler == "rma" || scheduler == "rma-seeded";
+}
+
 inline constexpr int kTagRequest = 181;
 inline constexpr int kTagReply = 182;
 

@@ -45,7 +45,7 @@ bool audit_frame(const std::string& name, const Workload& wl, int f, const std::
 bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win,
                    double owner_progress_us, SchedulerResult& result) {
   FrameRunner runner(o, wl, rank, ranks, win, owner_progress_us);
-  const bool rma = name == "rma" || name == "rma-seeded";
+  const bool rma = runs_window_protocol(name);
   if (rank == 0 && rma) {  // always: which code ran is part of every result
     std::fprintf(stderr, "%s: rma: core/stealing_protocol.hpp over the %s backend, policy %s\n", kProgram.data(),
                  runner.protocol().backend_name().data(), runner.protocol().policy_name().data());
