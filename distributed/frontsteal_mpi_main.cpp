@@ -1,8 +1,9 @@
 // frontsteal-mpi — the main job across MPI ranks (paper §7): the frame loop of frontsteal with every
 // rank holding the read-only workload (mpi_workload.hpp) and running its items of each frame under four
 // schedulers (frame_runner.hpp: rma, request, central, static), every frame audited (scheduler_run.hpp), the
-// results reported by rank 0 (mpi_report.hpp); --calibrate measures the one-sided latencies (calibration.hpp).
-// The protocol itself: core/stealing_protocol.hpp over rma_backend.hpp (window_protocol.hpp); the
+// results reported by rank 0 (mpi_report.hpp); --rounds runs every scheduler in paired rounds with an A/A twin
+// and a planted slowdown and decides each comparison (paired_rounds.hpp); --calibrate measures the one-sided latencies
+// (calibration.hpp). The protocol itself: core/stealing_protocol.hpp over rma_backend.hpp (window_protocol.hpp); the
 // transport's progress: owner_progress.hpp.
 #include <mpi.h>
 
@@ -13,6 +14,7 @@
 
 #include "distributed/calibration.hpp"
 #include "distributed/mpi_report.hpp"
+#include "distributed/paired_rounds.hpp"
 #include "distributed/rank_watchdog.hpp"
 #include "distributed/scheduler_run.hpp"
 #include "distributed/window_self_test.hpp"
@@ -28,11 +30,18 @@ int run_all(const fm::Options& o, fm::Workload& wl, int rank, int ranks, fm::Rma
   std::vector<fm::SchedulerResult> results;
   fm::arm_watchdog();
   int status = 0;
-  for (const std::string& s : o.schedulers) {
-    results.emplace_back();
-    if (!fm::run_scheduler(s, o, wl, rank, ranks, win, progress.every_us, results.back())) {
-      status = 1;
-      break;
+  fm::PairedRun paired;
+  if (o.rounds > 0) {
+    paired = fm::run_paired_rounds(o, wl, rank, ranks, win, progress.every_us);
+    status = paired.ok ? 0 : 1;
+    results = paired.results;
+  } else {
+    for (const std::string& s : o.schedulers) {
+      results.emplace_back();
+      if (!fm::run_scheduler(s, o, wl, rank, ranks, win, progress.every_us, results.back())) {
+        status = 1;
+        break;
+      }
     }
   }
   for (const fm::SchedulerResult& r : results) {
@@ -45,8 +54,17 @@ int run_all(const fm::Options& o, fm::Workload& wl, int rank, int ranks, fm::Rma
     }
   }
   MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  if (rank == 0 && status == 0)
-    fm::report_results(o, {ranks, o.scene, wl.n, o.frames, progress, o.work_ns, o.skew}, results);
+  if (rank == 0 && status == 0) {
+    const fm::RunSummary summary{ranks, o.scene, wl.n, o.frames, progress, o.work_ns, o.skew};
+    if (o.rounds > 0) {
+      fm::PairedReport report{
+          o.reference, paired.rounds_done, o.frames, o.margin_pct, fm::compare_arms(paired, o.margin_pct), {}};
+      report.method = fm::check_method(report.comparisons);
+      fm::report_results(o, summary, results, &report);
+    } else {
+      fm::report_results(o, summary, results);
+    }
+  }
   return status;
 }
 

@@ -150,8 +150,25 @@ Options parse_options(int argc, char** argv) {
            "costs, then exit");
   cli.option("--calibrate-op-s", o.calibrate_op_s, "--calibrate: at most this many seconds per operation")
       ->check(CLI::Range(0.01, 600.0));
+  cli.option("--rounds", o.rounds,
+             "paired rounds: each round runs every scheduler, its A/A twin and a planted slowdown of --reference "
+             "for --frames frames, in a random order; each is then compared with --reference (0: one pass each)")
+      ->check(CLI::Range(0, 100000));
+  cli.option("--reference", o.reference, "--rounds: the scheduler every other arm is compared with")
+      ->check(CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space"}));
+  cli.option("--margin-pct", o.margin_pct, "--rounds: equivalence margin of the verdicts, % of time")
+      ->check(CLI::Range(0.1, 50.0));
+  cli.option("--planted-pct", o.planted_pct,
+             "--rounds: the planted arm is --reference slowed by this % of its frame time (rank 0 spins after "
+             "each frame, inside the timed region)")
+      ->check(CLI::Range(0.1, 500.0));
+  cli.option("--seed", o.seed, "--rounds: seed of the round orders");
   cli.quiet(o.quiet);
   cli.parse(argc, argv);
+  if (o.rounds > 0 && o.planted_pct <= o.margin_pct) {
+    cli.usage_error("--planted-pct (" + std::to_string(o.planted_pct) + ") must exceed --margin-pct (" +
+                    std::to_string(o.margin_pct) + "): the planted arm must be found slower, beyond the margin");
+  }
   if (!stall.empty()) {
     const auto p = split(stall, ':');
     o.stall_rank = std::stoi(p[0]), o.stall_frame = std::stoi(p[1]), o.stall_ms = std::stoi(p[2]);

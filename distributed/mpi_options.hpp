@@ -37,6 +37,13 @@ struct Options {
   std::string owner_fence = "cpu";
   std::string owner_progress = "auto";  // auto | off | U (µs between the busy owner's progress calls; 0: every item)
   bool quiet = false;
+  // Paired rounds (paired_rounds.hpp): 0 = one pass of --frames per scheduler; R > 0 = R rounds, each running
+  // every arm for --frames frames in a fresh random order, then each arm compared with --reference.
+  int rounds = 0;
+  std::string reference = "static-space";
+  double margin_pct = 5;    // equivalence margin of the verdicts, % of time
+  double planted_pct = 10;  // the planted arm: the reference slowed by this % of its frame time
+  std::uint64_t seed = 1;   // the round orders
 };
 
 // The rank the launcher assigned (Open MPI, MPICH/hydra, PMIx), readable before MPI_Init; 0 when unknown.

@@ -155,7 +155,97 @@ report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>&
   return js;
 }
 
-void report_results(const Options& o, const RunSummary& run, const std::vector<SchedulerResult>& results) {
+namespace {
+
+const char* role_name(ArmRole r) {
+  switch (r) {
+    case ArmRole::kScheduler: return "scheduler";
+    case ArmRole::kReference: return "reference";
+    case ArmRole::kTwin: return "A/A twin";
+    case ArmRole::kPlanted: return "planted";
+  }
+  return "?";
+}
+
+std::string fixed(double v, int digits) { return report::fixed_text(v, digits); }
+
+// "+9.8 % [8.0, 11.6]": the change in time with its interval.
+std::string change_text(const measure::PairedResult& r) {
+  const measure::LogInterval& li = r.chosen();
+  if (!li.valid) return "no interval";
+  const double e = 100 * (li.ratio() - 1), lo = 100 * (li.ratio_low() - 1), hi = 100 * (li.ratio_high() - 1);
+  return (e >= 0 ? "+" : "") + fixed(e, 1) + " % [" + fixed(lo, 1) + ", " + fixed(hi, 1) + "]";
+}
+
+}  // namespace
+
+report::Table paired_table(const PairedReport& paired) {
+  using report::Cell;
+  report::Table t({{"arm", "arm", false},
+                   {"role", "role", false},
+                   {"rounds", "rounds"},
+                   {"time_ratio", "time / " + paired.reference},
+                   {"time_ratio_ci_low", "95% CI low"},
+                   {"time_ratio_ci_high", "95% CI high"},
+                   {"speedup", "speed-up"},
+                   {"speedup_ci_low", "95% CI low"},
+                   {"speedup_ci_high", "95% CI high"},
+                   {"verdict", "verdict (margin)", false},
+                   {"differs", "differs"},
+                   {"variance_removed_by_probe", "probe: variance removed"}});
+  for (const ArmComparison& c : paired.comparisons) {
+    const measure::LogInterval& li = c.result.chosen();
+    const bool v = li.valid;
+    t.add_row({Cell(c.label), Cell(role_name(c.role)), Cell(static_cast<std::uint64_t>(c.result.rounds)),
+               v ? Cell::fixed(li.ratio(), 3) : Cell::empty(), v ? Cell::fixed(li.ratio_low(), 3) : Cell::empty(),
+               v ? Cell::fixed(li.ratio_high(), 3) : Cell::empty(), v ? Cell::fixed(1 / li.ratio(), 3) : Cell::empty(),
+               v ? Cell::fixed(1 / li.ratio_high(), 3) : Cell::empty(),
+               v ? Cell::fixed(1 / li.ratio_low(), 3) : Cell::empty(),
+               Cell(std::string(measure::to_string(c.result.decision)) + " (+-" + fixed(paired.margin_pct, 1) + " %)"),
+               Cell(c.result.differs),
+               c.result.uses_adjusted ? Cell::fixed(c.result.variance_removed, 2) : Cell::empty()});
+  }
+  return t;
+}
+
+std::string paired_answer(const PairedReport& paired) {
+  std::string out = "paired rounds: " + std::to_string(paired.rounds) + " rounds of " +
+                    std::to_string(paired.frames_per_pass) +
+                    " frames per arm, arms in a random order each round, times by rank 0's clock (measured)\n";
+  for (const ArmComparison& c : paired.comparisons) {
+    if (c.role != ArmRole::kScheduler) continue;
+    const measure::LogInterval& li = c.result.chosen();
+    if (!li.valid) {
+      out += "  " + c.label + ": " + measure::to_string(c.result.decision) + " against " + paired.reference + "\n";
+      continue;
+    }
+    out += "  " + c.label + ": " + fixed(1 / li.ratio(), 2) + "x the speed of " + paired.reference + " [" +
+           fixed(1 / li.ratio_high(), 2) + ", " + fixed(1 / li.ratio_low(), 2) + "], " +
+           measure::to_string(c.result.decision) + "\n";
+  }
+  out += "the method in this run: ";
+  for (const ArmComparison& c : paired.comparisons) {
+    if (c.role == ArmRole::kTwin)
+      out += "A/A twin " + std::string(measure::to_string(c.result.decision)) + " (" + change_text(c.result) + "); ";
+    if (c.role == ArmRole::kPlanted)
+      out += "planted +" + fixed(c.planted_pct, 1) + " % " + measure::to_string(c.result.decision) + " (" +
+             change_text(c.result) + (paired.method.planted_size_held ? ", its size inside the interval" : "") + ")";
+  }
+  out += "\n";
+  if (!paired.method.passed()) {
+    out += "METHOD CHECK FAILED: ";
+    out += paired.method.twin_false_alarm ? "the A/A twin was called different; " : "";
+    out += paired.method.planted_found ? "" : "the planted slowdown was not found; ";
+    out += "treat the verdicts above as unproven (more rounds, a quieter machine)\n";
+  } else if (!paired.method.twin_equivalent) {
+    out += "the A/A twin was not called equivalent: this run's noise needs more rounds for equivalence verdicts\n";
+  }
+  return out;
+}
+
+void report_results(const Options& o, const RunSummary& run, const std::vector<SchedulerResult>& results,
+                    const PairedReport* paired) {
+  if (paired) std::printf("%s", paired_answer(*paired).c_str());
   print_classic_table(run, results);
   const report::Table t = intervals_table(results);
   const std::string warning = noise_warning(results);
@@ -165,15 +255,32 @@ void report_results(const Options& o, const RunSummary& run, const std::vector<S
       run.progress.describe().c_str(), t.terminal().c_str());
   std::printf("%s\n", warning.empty() ? "noise monitor: every scheduler's window was quiet" : warning.c_str());
   std::printf("every frame audited: each item exactly once, triangles equal to the serial loop's\n");
+  if (paired)
+    std::printf("\npaired against %s (95 %% intervals, Huber estimate, probe-adjusted where it helps)\n%s",
+                paired->reference.c_str(), paired_table(*paired).terminal().c_str());
   if (!o.json.empty()) {
-    report::write_atomically(o.json, run_json(run, results).dump(2) + "\n");
+    report::Json js = run_json(run, results);
+    if (paired) {
+      js["paired"] = {{"reference", paired->reference},
+                      {"rounds", paired->rounds},
+                      {"frames_per_pass", paired->frames_per_pass},
+                      {"margin_pct", paired->margin_pct},
+                      {"arms", paired_table(*paired).json()},
+                      {"method_passed", paired->method.passed()},
+                      {"twin_equivalent", paired->method.twin_equivalent},
+                      {"planted_found", paired->method.planted_found},
+                      {"planted_size_held", paired->method.planted_size_held}};
+    }
+    report::write_atomically(o.json, js.dump(2) + "\n");
     std::fprintf(stderr, "%s: wrote %s\n", kProgram.data(), o.json.c_str());
   }
   if (!o.markdown.empty()) {
     std::string md = "# frontsteal-mpi: " + std::to_string(run.ranks) + " ranks, " + run.scene + " (" +
                      std::to_string(run.items) + " items), " + std::to_string(run.frames) +
-                     " frames (measured, commit " + FRONTSTEAL_GIT_COMMIT + ")\n\n" + run.progress.describe() + "\n\n" +
-                     t.markdown() + "\n" +
+                     " frames (measured, commit " + FRONTSTEAL_GIT_COMMIT + ")\n\n" +
+                     (paired ? "```\n" + paired_answer(*paired) + "```\n\n" + paired_table(*paired).markdown() + "\n"
+                             : std::string()) +
+                     run.progress.describe() + "\n\n" + t.markdown() + "\n" +
                      (warning.empty() ? "Noise monitor: every scheduler's window was quiet.\n" : warning + "\n");
     report::write_atomically(o.markdown, md);
     std::fprintf(stderr, "%s: wrote %s\n", kProgram.data(), o.markdown.c_str());

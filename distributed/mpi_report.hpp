@@ -8,6 +8,7 @@
 
 #include "distributed/mpi_options.hpp"
 #include "distributed/owner_progress.hpp"
+#include "distributed/paired_rounds.hpp"
 #include "distributed/rank_stats.hpp"
 #include "reporting/json.hpp"
 #include "reporting/table.hpp"
@@ -24,8 +25,25 @@ struct RunSummary {
   std::uint32_t skew = 0;     // synthetic:N's heavy fifth (--skew)
 };
 
-// Prints both tables and the noise line to stdout; writes --json and --markdown when asked.
-void report_results(const Options& o, const RunSummary& run, const std::vector<SchedulerResult>& results);
+// The paired comparisons of a --rounds run (paired_rounds.hpp), as reported.
+struct PairedReport {
+  std::string reference;
+  int rounds = 0, frames_per_pass = 0;
+  double margin_pct = 0;
+  std::vector<ArmComparison> comparisons;
+  MethodCheck method;
+};
+
+// Prints both tables and the noise line to stdout; writes --json and --markdown when asked. With `paired`, the
+// answer in plain words and the paired table come first (stdout, markdown, and "paired" in the JSON).
+void report_results(const Options& o, const RunSummary& run, const std::vector<SchedulerResult>& results,
+                    const PairedReport* paired = nullptr);
+
+// One row per arm against the reference: time ratio and speed-up with 95 % intervals, the verdict.
+report::Table paired_table(const PairedReport& paired);
+// The answer first: one line per scheduler ("rma: 1.51x the speed of static-space [1.47, 1.55], faster"), then
+// what the A/A twin and the planted arm say about the method in this run.
+std::string paired_answer(const PairedReport& paired);
 
 // The medians with their intervals: one row per scheduler and rank (frame-time columns on each scheduler's
 // first row only).

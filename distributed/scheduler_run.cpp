@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <utility>
 
 #include "distributed/cost_seeded_lists.hpp"
 #include "distributed/frame_runner.hpp"
@@ -42,92 +43,123 @@ bool audit_frame(const std::string& name, const Workload& wl, int f, const std::
 
 }  // namespace
 
-bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win,
-                   double owner_progress_us, SchedulerResult& result) {
-  FrameRunner runner(o, wl, rank, ranks, win, owner_progress_us);
-  const bool rma = runs_window_protocol(name);
-  if (rank == 0 && rma) {  // always: which code ran is part of every result
+SchedulerRun::SchedulerRun(std::string name, const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win,
+                           double owner_progress_us)
+    : name_(std::move(name)),
+      o_(o),
+      wl_(wl),
+      rank_(rank),
+      ranks_(ranks),
+      win_(win),
+      runner_(std::make_unique<FrameRunner>(o, wl, rank, ranks, win, owner_progress_us)),
+      counts_(wl.n),
+      total_(rank == 0 ? wl.n : 0),
+      bytes_before_(static_cast<double>(win.bytes_moved())),
+      noise_(std::make_unique<NoiseWindow>()) {
+  if (rank == 0 && runs_window_protocol(name_)) {  // always: which code ran is part of every result
     std::fprintf(stderr, "%s: rma: core/stealing_protocol.hpp over the %s backend, policy %s\n", kProgram.data(),
-                 runner.protocol().backend_name().data(), runner.protocol().policy_name().data());
+                 runner_->protocol().backend_name().data(), runner_->protocol().policy_name().data());
   }
-  std::vector<std::uint32_t> counts(wl.n), total(rank == 0 ? wl.n : 0);
-  RangeList list = block_allocation(wl.n, static_cast<WorkerId>(ranks))[static_cast<std::size_t>(rank)];
+  noise_->start();
+}
+
+SchedulerRun::~SchedulerRun() = default;
+
+bool SchedulerRun::run_pass(int frames, double planted_s, std::vector<double>& frame_s) {
+  const bool rma = runs_window_protocol(name_);
+  FrameRunner& runner = *runner_;
+  RangeList list = block_allocation(wl_.n, static_cast<WorkerId>(ranks_))[static_cast<std::size_t>(rank_)];
   RangeList log;
   log.reserve(1024);
-  const double bytes_before = static_cast<double>(win.bytes_moved());
-  result.name = name;
-  NoiseWindow noise;
-  noise.start();
   bool ok = true;
-  for (int f = 0; f < o.frames && ok; ++f) {
+  for (int f = 0; f < frames && ok; ++f) {
     set_frame(f);
     set_phase("frame setup");
-    std::fill(counts.begin(), counts.end(), 0u);
+    std::fill(counts_.begin(), counts_.end(), 0u);
     // Between frames (every rank is past the previous frame's done barrier): install, re-arm, reset.
     if (rma) runner.protocol().install(list);
-    if (rank == 0) {
-      runner.protocol().rearm(static_cast<std::uint32_t>(ranks));  // E4
-      win.accumulate_replace(0, kNextItem, std::uint64_t{0});      // central counter
+    if (rank_ == 0) {
+      runner.protocol().rearm(static_cast<std::uint32_t>(ranks_));  // E4
+      win_.accumulate_replace(0, kNextItem, std::uint64_t{0});      // central counter
     }
-    win.sync();
+    win_.sync();
     MPI_Barrier(MPI_COMM_WORLD);  // frame start (E1/E2)
     set_phase("frame");
     note_progress();
     const auto t0 = Clock::now();
-    Frame fr{f, &counts};
-    runner.begin_frame(name);
+    Frame fr{f, &counts_};
+    runner.begin_frame(name_);
     if (rma) {
       runner.rma_frame(fr, log);
       list = log;
-    } else if (name == "request") {
+    } else if (name_ == "request") {
       runner.request_frame(fr, list, log);
       list = log;
-    } else if (name == "central") {
+    } else if (name_ == "central") {
       runner.central_frame(fr);
-    } else if (name == "static-space") {
+    } else if (name_ == "static-space") {
       runner.static_space_frame(fr);
     } else {
       runner.static_frame(fr);
     }
     set_phase("frame done barrier");
-    win.sync();
+    win_.sync();
     MPI_Barrier(MPI_COMM_WORLD);  // frame done (E3/E6)
     note_progress();
     // rma-seeded: the next lists are contiguous blocks of equal measured cost (cost_seeded_lists.hpp), from
     // every rank's item times of this frame; the all-reduce is part of this frame's time.
-    if (name == "rma-seeded") {
+    if (name_ == "rma-seeded") {
       std::vector<float>& mine = runner.item_costs();
       std::vector<float> all(mine.size());
       MPI_Allreduce(mine.data(), all.data(), static_cast<int>(mine.size()), MPI_FLOAT, MPI_SUM, MPI_COMM_WORLD);
-      list = cost_balanced_blocks(all, static_cast<WorkerId>(ranks))[static_cast<std::size_t>(rank)];
+      list = cost_balanced_blocks(all, static_cast<WorkerId>(ranks_))[static_cast<std::size_t>(rank_)];
       std::fill(mine.begin(), mine.end(), 0.0f);
     }
-    result.frame_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    if (rank_ == 0 && planted_s > 0) {  // the planted slowdown: a busy wait by the clock, inside the timed region
+      const auto until =
+          Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(planted_s));
+      while (Clock::now() < until) {
+      }
+    }
+    frame_s.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
     // The audit: counts and triangles reduced to rank 0, the verdict broadcast.
     set_phase("audit");
-    MPI_Reduce(counts.data(), total.data(), static_cast<int>(wl.n), MPI_UINT32_T, MPI_SUM, 0, MPI_COMM_WORLD);
+    MPI_Reduce(counts_.data(), total_.data(), static_cast<int>(wl_.n), MPI_UINT32_T, MPI_SUM, 0, MPI_COMM_WORLD);
     std::uint64_t tri = 0;
     MPI_Reduce(&fr.triangles, &tri, 1, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
     int verdict = 1;
-    if (rank == 0) {
-      verdict = audit_frame(name, wl, f, total, tri) ? 1 : 0;
-      if (verdict) ++result.audited_frames;
-      if (!o.quiet && (f + 1) % 10 == 0) {
+    if (rank_ == 0) {
+      verdict = audit_frame(name_, wl_, f, total_, tri) ? 1 : 0;
+      if (verdict) ++audited_frames_;
+      if (!o_.quiet && o_.rounds == 0 && (f + 1) % 10 == 0) {
         std::fprintf(stderr, "%s: %s: frame %d/%d audited (exactly once, %llu triangles)\n", kProgram.data(),
-                     name.c_str(), f + 1, o.frames, static_cast<unsigned long long>(tri));
+                     name_.c_str(), f + 1, frames, static_cast<unsigned long long>(tri));
       }
     }
     MPI_Bcast(&verdict, 1, MPI_INT, 0, MPI_COMM_WORLD);
     ok = verdict == 1;
   }
-  result.noise = noise.finish();
-  RankStats& stats = runner.finish_stats();
-  stats.bytes += static_cast<double>(win.bytes_moved()) - bytes_before;
-  stats.t4_wait_s = runner.protocol().t4_wait_s();
-  stats.t4_spins = static_cast<double>(runner.protocol().t4_polls());
-  result.ranks.resize(rank == 0 ? static_cast<std::size_t>(ranks) : 0);
-  MPI_Gather(&stats, kRankStatFields, MPI_DOUBLE, rank == 0 ? result.ranks.data() : nullptr, kRankStatFields,
+  return ok;
+}
+
+void SchedulerRun::finish(SchedulerResult& result) {
+  result.name = name_;
+  result.audited_frames = audited_frames_;
+  result.noise = noise_->finish();
+  RankStats& stats = runner_->finish_stats();
+  stats.bytes += static_cast<double>(win_.bytes_moved()) - bytes_before_;
+  stats.t4_wait_s = runner_->protocol().t4_wait_s();
+  stats.t4_spins = static_cast<double>(runner_->protocol().t4_polls());
+  result.ranks.resize(rank_ == 0 ? static_cast<std::size_t>(ranks_) : 0);
+  MPI_Gather(&stats, kRankStatFields, MPI_DOUBLE, rank_ == 0 ? result.ranks.data() : nullptr, kRankStatFields,
              MPI_DOUBLE, 0, MPI_COMM_WORLD);
+}
+
+bool run_scheduler(const std::string& name, const Options& o, Workload& wl, int rank, int ranks, RmaWindow& win,
+                   double owner_progress_us, SchedulerResult& result) {
+  SchedulerRun run(name, o, wl, rank, ranks, win, owner_progress_us);
+  const bool ok = run.run_pass(o.frames, 0.0, result.frame_s);
+  run.finish(result);
   return ok;
 }
 

@@ -84,3 +84,62 @@ TEST_CASE("the run plots hold the frame and per-rank data, with their script and
                       Catch::Matchers::Contains((file / "sub").string()));
   fs::remove(file);
 }
+
+namespace {
+
+// A run of `rounds` rounds with the arms of paired_arms(): rma (reference x speed), the reference, its twin
+// (reference x twin_factor) and the planted arm (reference x 1.10, planted at 10 %). The reference drifts round to
+// round by up to 30 %, as this machine's speed does; each arm gets its own small noise.
+fm::PairedRun synthetic_paired_run(int rounds, double speed, double twin_factor) {
+  fm::Options o;
+  o.schedulers = {"rma", "static-space"};
+  fm::PairedRun run;
+  run.arms = fm::paired_arms(o);
+  REQUIRE(run.arms.size() == 4);
+  run.reference = 1;
+  run.rounds.resize(4);
+  run.results.resize(4);
+  const double frames = 4;
+  for (std::size_t a = 0; a < 4; ++a) run.results[a].frame_s.assign(static_cast<std::size_t>(rounds * 4), 0.0);
+  run.arms[3].planted_s = 0.10 * 0.025;  // 10 % of a 25 ms frame
+  for (int r = 0; r < rounds; ++r) {
+    const double drift = 1.0 + 0.3 * ((r * 37) % 11) / 10.0;
+    const double jitter[4] = {1 + 0.004 * ((r * 7) % 5 - 2), 1 + 0.004 * ((r * 3) % 5 - 2),
+                              1 + 0.004 * ((r * 11) % 5 - 2), 1 + 0.004 * ((r * 13) % 5 - 2)};
+    const double ref = frames * 0.025 * drift;
+    const double times[4] = {ref / speed * jitter[0], ref * jitter[1], ref * twin_factor * jitter[2],
+                             (ref + frames * run.arms[3].planted_s) * jitter[3]};
+    for (std::size_t a = 0; a < 4; ++a) run.rounds[a].add(static_cast<std::size_t>(r), times[a], 0.0, 0);
+  }
+  return run;
+}
+
+}  // namespace
+
+TEST_CASE("paired rounds: a 1.5x scheduler is faster, the twin equivalent, the planted 10 % found", "[mpi_report]") {
+  const fm::PairedRun run = synthetic_paired_run(12, 1.5, 1.0);
+  fm::PairedReport rep{"static-space", 12, 4, 5.0, fm::compare_arms(run, 5.0), {}};
+  rep.method = fm::check_method(rep.comparisons);
+  REQUIRE(rep.comparisons.size() == 3);
+  CHECK(rep.comparisons[0].result.decision == frontsteal::measure::Decision::kFaster);
+  CHECK(1 / rep.comparisons[0].result.chosen().ratio() == Approx(1.5).epsilon(0.01));
+  CHECK(rep.method.twin_equivalent);
+  CHECK(rep.method.planted_found);
+  CHECK(rep.method.passed());
+  CHECK(rep.comparisons[2].planted_pct > 5.0);  // the planted size relative to the drifting reference's mean
+  const std::string answer = fm::paired_answer(rep);
+  CHECK_THAT(answer, Catch::Contains("rma: 1.50x the speed of static-space"));
+  CHECK_THAT(answer, !Catch::Contains("METHOD CHECK FAILED"));
+  CHECK(fm::paired_table(rep).rows() == 3);
+}
+
+// The negative control: a twin that is really 10 % slower (the method then cannot be trusted) is called
+// different, and the answer says the check failed.
+TEST_CASE("paired rounds: a twin that differs fails the method check, and the answer says so", "[mpi_report]") {
+  const fm::PairedRun run = synthetic_paired_run(12, 1.5, 1.10);
+  fm::PairedReport rep{"static-space", 12, 4, 5.0, fm::compare_arms(run, 5.0), {}};
+  rep.method = fm::check_method(rep.comparisons);
+  CHECK(rep.method.twin_false_alarm);
+  CHECK_FALSE(rep.method.passed());
+  CHECK_THAT(fm::paired_answer(rep), Catch::Contains("METHOD CHECK FAILED"));
+}
