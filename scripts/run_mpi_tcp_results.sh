@@ -1,6 +1,6 @@
 #!/bin/bash
 # run_mpi_tcp_results.sh — regenerates results/distributed/'s TCP results (two network namespaces, every byte over TCP):
-# frontsteal-mpi at 2, 3 and 4 ranks with all four schedulers (np{2,3,4}_synthetic20000_tcp.*, plots in
+# the one-sided latencies (calibration_np2_tcp.*), frontsteal-mpi at 2, 3 and 4 ranks with all four schedulers (np{2,3,4}_synthetic20000_tcp.*, plots in
 # plots_np{2,3,4}_tcp/), the --owner-progress sweep (owner_progress_sweep_tcp.txt), and the SIMULATED
 # 2-256 ranks from the committed calibrations (simulated_ranks_2_256.*, plots in plots_simulated/).
 # Needs root and ip(8) (tests/distributed/two_namespaces_tcp.sh) and a release build. ~2 minutes.
@@ -14,6 +14,8 @@ ns=tests/distributed/two_namespaces_tcp.sh
 out=results/distributed
 [ -x "$mpi" ] && [ -x "$sim" ] || { echo "run_mpi_tcp_results: build $build first (frontsteal-mpi, frontsteal-mpi-simulate)"; exit 2; }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+echo "run_mpi_tcp_results: the TCP calibration (calibration_np2_tcp.json)"
+NS_RANKS=1,1 timeout 300 $ns mpirun "$mpi" --calibrate --json $out/calibration_np2_tcp.json > $out/calibration_np2_tcp.txt 2>&1
 for spec in 2:1,1 3:2,1 4:2,2; do
   np=${spec%%:*}; f=$out/np${np}_synthetic20000_tcp
   echo "run_mpi_tcp_results: $np ranks (namespaces ${spec#*:})"

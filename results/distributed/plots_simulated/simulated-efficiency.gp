@@ -8,4 +8,4 @@ set ylabel 'efficiency'
 set yrange [0:1.05]
 set grid
 set key outside right top
-plot for [i=0:7] 'simulated-efficiency.dat' index i using 1:2 with linespoints lt 1+i%4 dt 1+i/4 pt 1+i title columnheader(1)
+plot for [i=0:9] 'simulated-efficiency.dat' index i using 1:2 with linespoints lt 1+i%4 dt 1+i/4 pt 1+i title columnheader(1)
