@@ -210,6 +210,19 @@ stats::Interval strided_median_ci(const std::vector<Sample>& samples) {
   return stats::bootstrap_median_ci(sub);
 }
 
+void FrameRunner::absorb(const RankStats& extra, const std::vector<double>& steal_latencies_us) {
+  stats_.busy_s += extra.busy_s;
+  stats_.items += extra.items;
+  stats_.steals += extra.steals;
+  stats_.steal_attempts += extra.steal_attempts;
+  stats_.steal_latency_s += extra.steal_latency_s;
+  stats_.steal_latency_max_s = std::max(stats_.steal_latency_max_s, extra.steal_latency_max_s);
+  stats_.idle_s += extra.idle_s;
+  stats_.local_steals += extra.local_steals;
+  stats_.progress_calls += extra.progress_calls;
+  steal_latencies_us_.insert(steal_latencies_us_.end(), steal_latencies_us.begin(), steal_latencies_us.end());
+}
+
 RankStats& FrameRunner::finish_stats() {
   if (!owner_samples_.empty()) {
     std::vector<float> sorted = owner_samples_;

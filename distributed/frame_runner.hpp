@@ -8,6 +8,8 @@
 //   central   a central counter in rank 0's window (MPI_Fetch_and_op), grain N/(100P) as §4.1.
 //   static    static round robin over ranks (§3), no communication.
 //   static-space  static contiguous blocks of ids (regions of space, as a cluster renderer assigns them).
+//   hier      ranks x threads (hierarchical_rank.hpp): core's protocol among the rank's --threads workers over
+//             the rank's list, and over the window between ranks once every worker of a rank is dry.
 //   rma-seeded  rma whose lists at each frame start are contiguous blocks of equal measured cost of the last
 //             frame (cost_seeded_lists.hpp) instead of what each rank processed.
 // TERMINATION inside a frame: the active count of core/active_workers.hpp (I-T) in rank 0's window
@@ -36,9 +38,10 @@
 
 namespace frontsteal::mpi {
 
-// The schedulers that run core's protocol over the window (rma, and rma with cost-seeded lists).
+// The schedulers that run core's protocol over the window (rma, rma with cost-seeded lists, and hier at the rank
+// level: hierarchical_rank.hpp).
 inline bool runs_window_protocol(const std::string& scheduler) {
-  return scheduler == "rma" || scheduler == "rma-seeded";
+  return scheduler == "rma" || scheduler == "rma-seeded" || scheduler == "hier";
 }
 
 inline constexpr int kTagRequest = 181;
@@ -63,6 +66,8 @@ class FrameRunner {
   void static_frame(Frame& fr);
   void static_space_frame(Frame& fr);
 
+  // Adds what another runner of this rank measured (hier's threads: the additive fields) and its steal latencies.
+  void absorb(const RankStats& extra, const std::vector<double>& steal_latencies_us);
   // The rank's statistics, with the medians and their 95 % bootstrap intervals filled in.
   RankStats& finish_stats();
   WindowProtocol& protocol() { return *protocol_; }

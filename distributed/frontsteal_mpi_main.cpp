@@ -47,7 +47,8 @@ int run_all(const fm::Options& o, fm::Workload& wl, int rank, int ranks, fm::Rma
   for (const fm::SchedulerResult& r : results) {
     double steals = 0;
     for (const fm::RankStats& s : r.ranks) steals += s.steals;
-    if (rank == 0 && status == 0 && o.require_steals && (r.name == "rma" || r.name == "request") && steals == 0) {
+    if (rank == 0 && status == 0 && o.require_steals && (r.name == "rma" || r.name == "request" || r.name == "hier") &&
+        steals == 0) {
       std::fprintf(stderr, "%s: --require-steals: scheduler %s made no steal in %d frames\n", fm::kProgram.data(),
                    r.name.c_str(), o.frames);
       status = 1;
@@ -107,6 +108,13 @@ int main(int argc, char** argv) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  if (provided < MPI_THREAD_FUNNELED) {  // hier's worker threads run beside the main thread's MPI calls
+    if (rank == 0)
+      std::fprintf(stderr, "%s: this MPI provides thread level %d, below MPI_THREAD_FUNNELED; refusing to run\n",
+                   fm::kProgram.data(), provided);
+    MPI_Finalize();
+    return 2;
+  }
   fm::start_watchdog(o.watchdog_s, rank);
   int status = 0;
   try {

@@ -1,6 +1,7 @@
 // mpi_options.cpp — frontsteal-mpi's options (mpi_options.hpp), through report::CommandLine (CLI11).
 #include "distributed/mpi_options.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdlib>
 
@@ -101,9 +102,10 @@ Options parse_options(int argc, char** argv) {
   cli.app()
       .add_option("--schedulers", o.schedulers,
                   "comma list of rma,rma-seeded (lists from the last frame's measured costs),request,central,"
-                  "static (round robin),static-space (contiguous blocks of ids: regions of space)")
+                  "static (round robin),static-space (contiguous blocks of ids: regions of space),hier (ranks x "
+                  "--threads: stealing among a rank's threads, then across ranks)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space"}));
+      ->check(CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space", "hier"}));
   cli.option("--work-ns", o.work_ns, "synthetic: cost of a light item (cascade: of the mean item) in ~ns of busy work")
       ->check(CLI::Range(0u, 100000000u));
   cli.option("--skew", o.skew, "synthetic: the heavy fifth of the ids (a window that moves each frame) costs K x")
@@ -143,8 +145,8 @@ Options parse_options(int argc, char** argv) {
              "auto: off under Open MPI with every rank on one node (osc/sm), else 50")
       ->check(owner_progress_validator());
   cli.flag("--require-steals", o.require_steals,
-           "exit 1 unless rma and request each made at least one steal (tests: "
-           "stealing was exercised)");
+           "exit 1 unless rma, request and hier each made at least one steal (hier: "
+           "across ranks; tests: stealing was exercised)");
   cli.flag("--calibrate", o.calibrate,
            "measure get/put/CAS/fetch-and-op/flush latency and the owner's per-item "
            "costs, then exit");
@@ -155,7 +157,7 @@ Options parse_options(int argc, char** argv) {
              "for --frames frames, in a random order; each is then compared with --reference (0: one pass each)")
       ->check(CLI::Range(0, 100000));
   cli.option("--reference", o.reference, "--rounds: the scheduler every other arm is compared with")
-      ->check(CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space"}));
+      ->check(CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space", "hier"}));
   cli.option("--margin-pct", o.margin_pct, "--rounds: equivalence margin of the verdicts, % of time")
       ->check(CLI::Range(0.1, 50.0));
   cli.option("--planted-pct", o.planted_pct,
@@ -163,8 +165,22 @@ Options parse_options(int argc, char** argv) {
              "each frame, inside the timed region)")
       ->check(CLI::Range(0.1, 500.0));
   cli.option("--seed", o.seed, "--rounds: seed of the round orders");
+  cli.option("--threads", o.threads,
+             "hier: worker threads per rank (core's protocol among them; only the rank's main thread calls MPI)")
+      ->check(CLI::Range(1, 256));
+  cli.option("--chunk-us", o.chunk_us,
+             "hier: a worker takes from its rank's list a chunk of about this much work (us, from the rank's mean "
+             "item time of the last frame; at most 256 items)")
+      ->check(CLI::Range(0.001, 1e6));
   cli.quiet(o.quiet);
   cli.parse(argc, argv);
+  const bool hier = std::find(o.schedulers.begin(), o.schedulers.end(), "hier") != o.schedulers.end() ||
+                    (o.rounds > 0 && o.reference == "hier");
+  if (hier && o.owner_fence == "win-sync") {
+    cli.usage_error(
+        "--owner-fence win-sync calls MPI on every claim, and under hier any worker thread claims: "
+        "use --owner-fence cpu with hier");
+  }
   if (o.rounds > 0 && o.planted_pct <= o.margin_pct) {
     cli.usage_error("--planted-pct (" + std::to_string(o.planted_pct) + ") must exceed --margin-pct (" +
                     std::to_string(o.margin_pct) + "): the planted arm must be found slower, beyond the margin");

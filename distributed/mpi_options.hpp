@@ -44,6 +44,9 @@ struct Options {
   double margin_pct = 5;    // equivalence margin of the verdicts, % of time
   double planted_pct = 10;  // the planted arm: the reference slowed by this % of its frame time
   std::uint64_t seed = 1;   // the round orders
+  // hier (hierarchical_rank.hpp): worker threads per rank, and the work (us) of one chunk taken from the rank list.
+  int threads = 2;
+  double chunk_us = 50;
 };
 
 // The rank the launcher assigned (Open MPI, MPICH/hydra, PMIx), readable before MPI_Init; 0 when unknown.

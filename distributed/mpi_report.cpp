@@ -135,7 +135,8 @@ report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>&
            {"steal_latency_median_us", s.steal_latency_median_us},
            {"steal_latency_median_ci95_us", interval(s.steal_latency_ci_low_us, s.steal_latency_ci_high_us)},
            {"owner_overhead_median_ci95_ns", interval(s.owner_overhead_ci_low_ns, s.owner_overhead_ci_high_ns)},
-           {"progress_calls", s.progress_calls}});
+           {"progress_calls", s.progress_calls},
+           {"local_steals", s.local_steals}});
     }
     sj["median_frame_ms_ci95"] = interval(f.low, f.high);
     sj["frames_per_s_from_median"] = f.median > 0 ? 1000 / f.median : 0.0;

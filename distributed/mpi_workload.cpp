@@ -1,6 +1,8 @@
 // mpi_workload.cpp — the workload of frontsteal-mpi (mpi_workload.hpp).
 #include "distributed/mpi_workload.hpp"
 
+#include <algorithm>
+
 #include "core/synthetic_work.hpp"
 
 #ifndef FRONTSTEAL_DATA_DIR
@@ -23,6 +25,7 @@ void build_synthetic(const Options& o, const SyntheticScene& scene, Workload& wl
     spin_work(static_cast<std::uint32_t>(wl.cost->units(f, id) * unit_ns + 0.5));
     return synthetic_triangles(f, id);
   };
+  wl.run_on = [&wl](int f, ItemId id, WorkerId) { return wl.run(f, id); };
   wl.serial_triangles = [n = wl.n](int f) {
     std::uint64_t t = 0;
     for (ItemId id = 0; id < n; ++id) t += synthetic_triangles(f, id);
@@ -42,8 +45,9 @@ void build_workload(const Options& o, int rank, Workload& wl) {
   so.settings.pixel_tolerance = o.tolerance;
   wl.scene = tess::make_path_scene(so);  // throws on a bad or empty scene
   wl.n = wl.scene.surfaces();
-  wl.frames.emplace(wl.scene, 1);
+  wl.frames.emplace(wl.scene, static_cast<WorkerId>(std::max(1, o.threads)));
   wl.run = [&wl](int f, ItemId id) { return wl.frames->run(f, id, 0).triangles; };
+  wl.run_on = [&wl](int f, ItemId id, WorkerId w) { return wl.frames->run(f, id, w).triangles; };
   if (rank == 0) {  // the serial reference: a plain loop, once, before any scheduler runs
     for (int f = 0; f < o.frames; ++f) {
       std::uint64_t t = 0;

@@ -18,11 +18,13 @@ namespace frontsteal::mpi {
 
 struct Workload {
   ItemId n = 0;
-  std::string kind;                                          // "synthetic", "cascade" or "tessellation"
-  std::function<std::uint32_t(int frame, ItemId id)> run;    // executes item id of frame f; its triangles
+  std::string kind;                                        // "synthetic", "cascade" or "tessellation"
+  std::function<std::uint32_t(int frame, ItemId id)> run;  // executes item id of frame f; its triangles
+  // The same on the rank's worker thread w (hier: --threads workers, each with its own tessellation scratch).
+  std::function<std::uint32_t(int frame, ItemId id, WorkerId w)> run_on;
   std::function<std::uint64_t(int frame)> serial_triangles;  // the serial loop's count for frame f (rank 0)
   // Tessellation (empty for synthetic): the scene along frontsteal's default path (tessellate/path_scene.hpp);
-  // a rank runs one item at a time, so one worker's scratch serves it.
+  // one scratch per worker thread of the rank (--threads).
   tess::PathScene scene;
   std::optional<tess::FrameWorkload> frames;  // over scene
   std::vector<std::uint64_t> serial;          // per frame, the serial loop's triangles (rank 0)

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <random>
 #include <utility>
 
 #include "distributed/cost_seeded_lists.hpp"
 #include "distributed/frame_runner.hpp"
+#include "distributed/hierarchical_rank.hpp"
 #include "distributed/noise_window.hpp"
 #include "distributed/rank_watchdog.hpp"
 
@@ -60,6 +62,15 @@ SchedulerRun::SchedulerRun(std::string name, const Options& o, Workload& wl, int
     std::fprintf(stderr, "%s: rma: core/stealing_protocol.hpp over the %s backend, policy %s\n", kProgram.data(),
                  runner_->protocol().backend_name().data(), runner_->protocol().policy_name().data());
   }
+  if (name_ == "hier") {
+    std::vector<int> victims;
+    for (int v = 0; v < ranks; ++v) {
+      if (v != rank) victims.push_back(v);
+    }
+    std::mt19937_64 rng(0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(rank + 1));
+    std::shuffle(victims.begin(), victims.end(), rng);  // §4.2.1: victims in a random order per processor
+    hier_ = std::make_unique<HierarchicalRank>(o, wl, rank, runner_->protocol(), std::move(victims), owner_progress_us);
+  }
   noise_->start();
 }
 
@@ -89,7 +100,10 @@ bool SchedulerRun::run_pass(int frames, double planted_s, std::vector<double>& f
     const auto t0 = Clock::now();
     Frame fr{f, &counts_};
     runner.begin_frame(name_);
-    if (rma) {
+    if (hier_) {
+      hier_->run_frame(f, counts_, fr.triangles, log);
+      list = log;
+    } else if (rma) {
       runner.rma_frame(fr, log);
       list = log;
     } else if (name_ == "request") {
@@ -146,6 +160,11 @@ void SchedulerRun::finish(SchedulerResult& result) {
   result.name = name_;
   result.audited_frames = audited_frames_;
   result.noise = noise_->finish();
+  if (hier_) {
+    RankStats extra;
+    hier_->add_stats(extra);
+    runner_->absorb(extra, hier_->steal_latencies_us());
+  }
   RankStats& stats = runner_->finish_stats();
   stats.bytes += static_cast<double>(win_.bytes_moved()) - bytes_before_;
   stats.t4_wait_s = runner_->protocol().t4_wait_s();

@@ -22,6 +22,7 @@
 namespace frontsteal::mpi {
 
 class FrameRunner;
+class HierarchicalRank;
 class NoiseWindow;
 
 // One scheduler's runner kept across passes (the paired rounds of paired_rounds.hpp run each arm once per
@@ -50,6 +51,7 @@ class SchedulerRun {
   int rank_, ranks_;
   RmaWindow& win_;
   std::unique_ptr<FrameRunner> runner_;
+  std::unique_ptr<HierarchicalRank> hier_;  // hier only
   std::vector<std::uint32_t> counts_, total_;
   std::uint64_t audited_frames_ = 0;
   double bytes_before_ = 0;

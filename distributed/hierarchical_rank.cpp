@@ -1,0 +1,240 @@
+// hierarchical_rank.cpp — ranks x threads (hierarchical_rank.hpp).
+#include "distributed/hierarchical_rank.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <random>
+
+#include "distributed/rank_watchdog.hpp"
+
+namespace frontsteal::mpi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The largest chunk a worker takes from the rank list at once: a chunk is no longer stealable by other ranks.
+constexpr std::uint32_t kMaxChunk = 256;
+
+// An idle loop's pause after `failed` fruitless rounds: yield three times, then sleep 1, 2, 4 ... 256 us (with
+// more threads than cores a spinning idle worker takes the CPU from the very workers it waits for).
+void back_off(std::uint32_t failed) {
+  if (failed < 4) {
+    std::this_thread::yield();
+  } else {
+    std::this_thread::sleep_for(std::chrono::microseconds(1u << std::min<std::uint32_t>(failed - 4, 8)));
+  }
+}
+
+}  // namespace
+
+struct HierarchicalRank::Worker {
+  Worker(std::uint32_t t, LocalSlot& slot, ActiveWorkers<StdBackend, Fenced>& active, std::uint32_t capacity)
+      : index(t), owner(slot), thief(active, capacity) {}
+  std::uint32_t index;
+  Owner<StdBackend, Fenced> owner;
+  Thief<StdBackend, Fenced> thief;
+  std::vector<std::uint32_t> local_victims;
+  RangeList log, chunk;
+  bool holding = false;  // counts in local_active_
+  double busy_s = 0, items = 0, local_steals = 0;
+  std::uint64_t triangles = 0;
+};
+
+HierarchicalRank::HierarchicalRank(const Options& o, Workload& wl, int rank, WindowProtocol& window,
+                                   std::vector<int> remote_victims, double owner_progress_us)
+    : o_(o),
+      wl_(wl),
+      rank_(rank),
+      window_(window),
+      remote_victims_(std::move(remote_victims)),
+      progress_(MPI_COMM_WORLD, owner_progress_us),
+      threads_(static_cast<std::uint32_t>(std::max(1, o.threads))),
+      local_active_(0),
+      start_(static_cast<std::ptrdiff_t>(threads_)),
+      end_(static_cast<std::ptrdiff_t>(threads_)),
+      mean_item_ns_(std::max(1.0, static_cast<double>(o.work_ns))) {
+  // A local list holds a chunk or a share of one: at most kMaxChunk ranges.
+  for (std::uint32_t t = 0; t < threads_; ++t) slots_.push_back(std::make_unique<LocalSlot>(kMaxChunk));
+  std::mt19937_64 rng(0x51ED270B27ull * static_cast<std::uint64_t>(rank + 1));
+  for (std::uint32_t t = 0; t < threads_; ++t) {
+    workers_.push_back(std::make_unique<Worker>(t, *slots_[t], local_active_, kMaxChunk));
+    for (std::uint32_t v = 0; v < threads_; ++v) {
+      if (v != t) workers_.back()->local_victims.push_back(v);
+    }
+    std::shuffle(workers_.back()->local_victims.begin(), workers_.back()->local_victims.end(), rng);
+  }
+  for (std::uint32_t t = 1; t < threads_; ++t) threads_started_.emplace_back([this, t] { worker_main(t); });
+}
+
+HierarchicalRank::~HierarchicalRank() {
+  stop_.store(true, std::memory_order_relaxed);  // ordered before the workers' read by the barrier
+  start_.arrive_and_wait();
+  for (std::thread& t : threads_started_) t.join();
+}
+
+void HierarchicalRank::worker_main(std::uint32_t t) {
+  while (true) {
+    start_.arrive_and_wait();
+    if (stop_.load(std::memory_order_relaxed)) return;
+    work(t);
+    end_.arrive_and_wait();
+  }
+}
+
+void HierarchicalRank::run_frame(int frame, std::vector<std::uint32_t>& counts, std::uint64_t& triangles,
+                                 RangeList& log) {
+  frame_ = frame;
+  counts_ = &counts;
+  chunk_ = static_cast<std::uint32_t>(
+      std::clamp(o_.chunk_us * 1000.0 / std::max(1.0, mean_item_ns_), 1.0, static_cast<double>(kMaxChunk)));
+  rank_active_ = true;  // E4 re-armed the window's count with every rank in it
+  frame_over_.store(false, std::memory_order_relaxed);
+  for (auto& w : workers_) {
+    w->log.clear();
+    w->triangles = 0;
+  }
+  start_.arrive_and_wait();  // the frame's state above happens-before every worker's loop
+  work(0);
+  end_.arrive_and_wait();  // every worker's items and logs happen-before what follows
+  // The rank's next list: every item its workers ran, in id order.
+  RangeList all;
+  double busy = 0, items = 0;
+  for (auto& w : workers_) {
+    all.insert(all.end(), w->log.begin(), w->log.end());
+    triangles += w->triangles;
+    busy += w->busy_s;
+    items += w->items;
+  }
+  std::sort(all.begin(), all.end(), [](const IdRange& a, const IdRange& b) { return a.begin < b.begin; });
+  log.clear();
+  for (const IdRange& r : all) append_merging(log, r);
+  if (items > 0) mean_item_ns_ = 1e9 * busy / items;
+}
+
+void HierarchicalRank::work(std::uint32_t t) {
+  Worker& w = *workers_[t];
+  std::uint32_t failed_rounds = 0;
+  while (!frame_over_.load(std::memory_order_acquire)) {
+    // 1. Its own local list.
+    while (const std::optional<ItemId> id = w.owner.try_claim()) execute(w, *id);
+    if (w.holding) {
+      local_active_.leave();  // A2 (local): own list exhausted, every claimed item done
+      w.holding = false;
+    }
+    // 2. A chunk of the rank's list (the rank's own work, claimed under the mutex: cheaper than a steal).
+    bool got = refill(w);
+    // 3. A sibling's local list: node-local victims before any remote one.
+    for (std::size_t k = 0; !got && k < w.local_victims.size(); ++k) {
+      if (w.thief.try_steal(*slots_[w.local_victims[k]]) != StealOutcome::kStolen) continue;  // A1 (local) inside
+      w.owner.install(w.thief.share());
+      w.holding = true;
+      w.local_steals += 1;
+      got = true;
+    }
+    if (got) {
+      failed_rounds = 0;
+      continue;
+    }
+    // 4. Nothing in this rank for this worker: worker 0 goes to other ranks once every local worker is dry.
+    if (t == 0) {
+      if (!remote_step(failed_rounds)) return;
+    } else {
+      back_off(++failed_rounds);
+    }
+  }
+}
+
+// Claims up to chunk_ items from the rank list into w's local list. The join comes first (under the mutex), so
+// worker 0 never sees the local count at 0 while a chunk is on its way to a worker.
+bool HierarchicalRank::refill(Worker& w) {
+  w.chunk.clear();
+  {
+    std::lock_guard<std::mutex> lock(rank_mutex_);
+    local_active_.join();  // A1 (local)
+    for (std::uint32_t k = 0; k < chunk_; ++k) {
+      const std::optional<ItemId> id = window_.try_claim();
+      if (!id) break;
+      append_merging(w.chunk, {*id, *id + 1});
+    }
+    if (w.chunk.empty()) {
+      local_active_.leave();
+      return false;
+    }
+  }
+  w.owner.install(w.chunk);
+  w.holding = true;
+  return true;
+}
+
+// Worker 0, its rank list empty and nothing local for it. Returns false when the frame is over.
+bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
+  const auto idle_start = Clock::now();
+  {
+    std::lock_guard<std::mutex> lock(rank_mutex_);
+    if (!local_active_.all_idle()) {              // a sibling still holds work: it may yet be stolen locally
+      if (progress_.enabled()) progress_.call();  // thieves' operations on this rank's window wait for it (TCP)
+      back_off(++failed_rounds);
+      idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start).count();
+      return true;
+    }
+  }
+  if (rank_active_) {
+    window_.leave();  // A2 for the rank: its list exhausted, every local worker dry
+    rank_active_ = false;
+  }
+  if (window_.all_idle()) {  // A3: no rank holds work
+    frame_over_.store(true, std::memory_order_release);
+    return false;
+  }
+  StealHooks hooks;
+  hooks.force_overlap = o_.force_overlap;  // tests only: the interleaving a skipped re-read gets wrong, forced
+  for (int v : remote_victims_) {
+    const auto t0 = Clock::now();
+    remote_attempts_ += 1;
+    if (window_.try_steal(v, hooks) != StealOutcome::kStolen) continue;  // A1 (global) inside, on success
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    remote_steals_ += 1;
+    steal_latency_s_ += s;
+    steal_latency_max_s_ = std::max(steal_latency_max_s_, s);
+    steal_latencies_us_.push_back(1e6 * s);
+    {
+      std::lock_guard<std::mutex> lock(rank_mutex_);
+      window_.install(window_.share());
+    }
+    rank_active_ = true;
+    failed_rounds = 0;
+    idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start).count();
+    return true;
+  }
+  back_off(++failed_rounds);
+  note_progress();
+  idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start).count();
+  return true;
+}
+
+void HierarchicalRank::execute(Worker& w, ItemId id) {
+  const auto t0 = Clock::now();
+  w.triangles += wl_.run_on(frame_, id, w.index);
+  std::atomic_ref<std::uint32_t>((*counts_)[id]).fetch_add(1, std::memory_order_relaxed);
+  w.busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  w.items += 1;
+  if (w.index == 0 && progress_.maybe_call(Clock::now())) progress_calls_ += 1;  // only worker 0 calls MPI
+  append_merging(w.log, {id, id + 1});
+  note_progress();
+}
+
+void HierarchicalRank::add_stats(RankStats& s) const {
+  for (const auto& w : workers_) {
+    s.busy_s += w->busy_s;
+    s.items += w->items;
+    s.local_steals += w->local_steals;
+  }
+  s.steals += remote_steals_;
+  s.steal_attempts += remote_attempts_;
+  s.steal_latency_s += steal_latency_s_;
+  s.steal_latency_max_s = std::max(s.steal_latency_max_s, steal_latency_max_s_);
+  s.idle_s += idle_s_;
+  s.progress_calls += progress_calls_;
+}
+
+}  // namespace frontsteal::mpi

@@ -1,0 +1,113 @@
+// hierarchical_rank.hpp — ranks x threads: one rank's worker threads running core's stealing protocol among
+// themselves (std atomics), over the rank's list in the MPI window (core's protocol again, window_protocol.hpp).
+// The `hier` scheduler of frontsteal-mpi.
+//
+// ROLES (one HierarchicalRank per rank; T = --threads)
+//   worker t     a thread (t = 0 is the rank's main thread, the only one that calls MPI: MPI_THREAD_FUNNELED).
+//                Owner of local slot t (core Owner<StdBackend, Fenced>), thief of the other local slots (core
+//                Thief<StdBackend, Fenced>).
+//   the rank     owner of the rank's window slot (core Owner over RmaBackend): its claims are made by any worker,
+//                one at a time under `rank_mutex_` (the mutex orders them: one logical owner, as the protocol
+//                requires); its installs and every remote operation by worker 0 only.
+//
+// THE LOOP of every worker, until the frame is over:
+//   1. claim and run items from its own local list (wait-free);
+//   2. list empty: refill it with a chunk of the rank list — `chunk` items claimed one by one under
+//      rank_mutex_, sized by measured cost (items of ~--chunk-us of work, from the rank's mean item time of the
+//      last frame): the rank list stays stealable by other ranks except for the chunks taken from it;
+//   3. the rank list empty: steal half of a sibling's local list (node-local victims before remote ones);
+//   4. nothing in the rank: worker 0, once every local worker is dry (the local active count is 0 under
+//      rank_mutex_), leaves the global active count (A2 for the rank) and steals from other ranks (one-sided
+//      operations; core takes half of the victim's unclaimed rank list), installing a share into the rank list
+//      for every worker to refill from; the others back off and retry steps 2-3.
+// TERMINATION. Locally: a worker counts in `local_active_` (core ActiveWorkers over std atomics) while it holds
+// work; it joins under rank_mutex_ before claiming a chunk, local thieves join on a victim's behalf (A1, inside
+// core). Globally: the window's active count (one per rank, I-T); worker 0 ends the frame when it is 0. When
+// worker 0 finds every local worker dry and the rank list empty, no work can appear in this rank except through
+// worker 0's own remote steal, so the frame's end is declared only when no rank holds work.
+// EXACTLY ONCE: every item of the rank list is claimed once (core over the window, the rank's claims serialized),
+// lands in one local list, and is claimed there once (core over std atomics); the audit checks it (scheduler_run).
+// NEXT FRAME: the rank's next list is every item its workers ran this frame, stolen work included (§4.2.1 at the
+// rank level); local lists start empty.
+#pragma once
+
+#include <atomic>
+#include <barrier>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "core/id_range.hpp"
+#include "core/std_backend.hpp"
+#include "core/stealing_protocol.hpp"
+#include "distributed/mpi_options.hpp"
+#include "distributed/mpi_workload.hpp"
+#include "distributed/owner_progress.hpp"
+#include "distributed/rank_stats.hpp"
+#include "distributed/window_protocol.hpp"
+
+namespace frontsteal::mpi {
+
+class HierarchicalRank {
+ public:
+  // `remote_victims`: the other ranks, in this rank's random order. Starts T - 1 threads that wait for frames.
+  // `owner_progress_us`: worker 0 calls into MPI between items at most this often (owner_progress.hpp), so that
+  // other ranks' one-sided operations on this rank's window complete where the transport needs it (TCP).
+  HierarchicalRank(const Options& o, Workload& wl, int rank, WindowProtocol& window, std::vector<int> remote_victims,
+                   double owner_progress_us);
+  ~HierarchicalRank();
+  HierarchicalRank(const HierarchicalRank&) = delete;
+  HierarchicalRank& operator=(const HierarchicalRank&) = delete;
+
+  // One frame, on the rank's main thread, between the frame's barriers, after the rank list was installed and the
+  // active count re-armed. Adds to counts (atomically: the audit) and triangles; `log` receives the rank's items.
+  void run_frame(int frame, std::vector<std::uint32_t>& counts, std::uint64_t& triangles, RangeList& log);
+  // Adds this rank's totals (busy time, items, steals, attempts, latencies, local steals) to `s`.
+  void add_stats(RankStats& s) const;
+  // Remote steal latencies (us), for the medians.
+  const std::vector<double>& steal_latencies_us() const { return steal_latencies_us_; }
+  std::uint32_t chunk() const { return chunk_; }
+
+ private:
+  using LocalSlot = ActivitySlot<StdBackend, Fenced>;
+  struct Worker;
+
+  void worker_main(std::uint32_t t);
+  void work(std::uint32_t t);
+  bool refill(Worker& w);
+  bool remote_step(std::uint32_t& failed_rounds);
+  void execute(Worker& w, ItemId id);
+
+  const Options& o_;
+  Workload& wl_;
+  int rank_;
+  WindowProtocol& window_;
+  std::vector<int> remote_victims_;
+  OwnerProgress progress_;  // worker 0 only
+  std::uint32_t threads_;
+
+  ActiveWorkers<StdBackend, Fenced> local_active_;
+  std::vector<std::unique_ptr<LocalSlot>> slots_;
+  std::vector<std::unique_ptr<Worker>> workers_;
+  std::mutex rank_mutex_;    // serializes the rank's claims and installs on its window slot
+  bool rank_active_ = true;  // worker 0 only: this rank counts in the window's active count
+  std::atomic<bool> frame_over_{false};
+  std::atomic<bool> stop_{false};
+  std::barrier<> start_, end_;
+  std::vector<std::thread> threads_started_;
+
+  // The frame in progress (written by worker 0 before start_, read by every worker after it).
+  int frame_ = 0;
+  std::vector<std::uint32_t>* counts_ = nullptr;
+  std::uint32_t chunk_ = 1;
+  double mean_item_ns_ = 0;
+
+  // Worker 0's remote statistics.
+  double progress_calls_ = 0;
+  double remote_steals_ = 0, remote_attempts_ = 0, steal_latency_s_ = 0, steal_latency_max_s_ = 0, idle_s_ = 0;
+  std::vector<double> steal_latencies_us_;
+};
+
+}  // namespace frontsteal::mpi
