@@ -8,6 +8,7 @@
 #include <random>
 #include <thread>
 
+#include "distributed/rank_ledger.hpp"
 #include "distributed/rank_watchdog.hpp"
 #include "measure/paired_comparison.hpp"
 
@@ -36,6 +37,7 @@ void FrameRunner::execute(Frame& fr, ItemId id) {
   const auto t0 = Clock::now();
   fr.triangles += wl_.run(fr.f, id);
   (*fr.counts)[id] += 1;
+  ledger_mark(id);
   const double took = std::chrono::duration<double>(Clock::now() - t0).count();
   stats_.busy_s += took;
   if (!item_costs_.empty()) item_costs_[id] = static_cast<float>(took);

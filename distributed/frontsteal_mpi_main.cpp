@@ -15,6 +15,7 @@
 #include "distributed/calibration.hpp"
 #include "distributed/mpi_report.hpp"
 #include "distributed/paired_rounds.hpp"
+#include "distributed/rank_ledger.hpp"
 #include "distributed/rank_watchdog.hpp"
 #include "distributed/scheduler_run.hpp"
 #include "distributed/window_self_test.hpp"
@@ -102,6 +103,15 @@ int refuse_unusable_window(fm::RmaWindow& win, int rank) {
 
 int main(int argc, char** argv) {
   const fm::Options o = fm::parse_options(argc, argv);  // before MPI_Init: a bad flag costs no MPI start-up
+  if (!o.post_mortem.empty()) {
+    try {
+      std::printf("%s", fm::describe(fm::read_ledgers(o.post_mortem)).c_str());
+      return 0;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: %s\n", fm::kProgram.data(), e.what());
+      return 2;
+    }
+  }
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   int rank = 0, ranks = 1;
@@ -121,6 +131,7 @@ int main(int argc, char** argv) {
     fm::Workload wl;
     const auto load0 = std::chrono::steady_clock::now();
     fm::build_workload(o, rank, wl);
+    fm::open_ledger(o.ledger, rank, ranks, wl.n);
     fm::note_progress();
     fm::RmaWindow win(MPI_COMM_WORLD, std::max<std::uint32_t>(wl.n, 1));
     win.plant_read_before_flush(o.defect == "read-before-flush");
@@ -141,6 +152,7 @@ int main(int argc, char** argv) {
       }
     }
     MPI_Barrier(MPI_COMM_WORLD);
+    fm::ledger_exit(fm::LedgerState::kFinished);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: rank %d: %s\n", fm::kProgram.data(), rank, e.what());
     std::fflush(stderr);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <random>
 
+#include "distributed/rank_ledger.hpp"
 #include "distributed/rank_watchdog.hpp"
 
 namespace frontsteal::mpi {
@@ -216,6 +217,7 @@ void HierarchicalRank::execute(Worker& w, ItemId id) {
   const auto t0 = Clock::now();
   w.triangles += wl_.run_on(frame_, id, w.index);
   std::atomic_ref<std::uint32_t>((*counts_)[id]).fetch_add(1, std::memory_order_relaxed);
+  ledger_mark(id);
   w.busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
   w.items += 1;
   if (w.index == 0 && progress_.maybe_call(Clock::now())) progress_calls_ += 1;  // only worker 0 calls MPI

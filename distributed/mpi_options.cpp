@@ -172,6 +172,12 @@ Options parse_options(int argc, char** argv) {
              "hier: a worker takes from its rank's list a chunk of about this much work (us, from the rank's mean "
              "item time of the last frame; at most 256 items)")
       ->check(CLI::Range(0.001, 1e6));
+  cli.option("--ledger", o.ledger,
+             "each rank records its frame and the items it ran in DIR/rank-R.ledger (a mapped file that outlives "
+             "the rank): after a job a dead rank ended, --post-mortem DIR says what was lost");
+  cli.option("--post-mortem", o.post_mortem,
+             "read the ledgers a --ledger run left in DIR, report which rank died and which items of its last "
+             "frame were lost, and exit (run without mpirun)");
   cli.quiet(o.quiet);
   cli.parse(argc, argv);
   const bool hier = std::find(o.schedulers.begin(), o.schedulers.end(), "hier") != o.schedulers.end() ||

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "distributed/mpi_options.hpp"
+#include "distributed/rank_ledger.hpp"
 
 namespace frontsteal::mpi {
 namespace {
@@ -46,6 +47,7 @@ void start_watchdog(double limit_s, int rank) {
                      "hangs; exiting %d instead of hanging\n",
                      kProgram.data(), rank, idle, g_frame.load(), g_phase.load(), kWatchdogExitCode);
         std::fflush(stderr);
+        ledger_exit(LedgerState::kWatchdog);
         std::_Exit(kWatchdogExitCode);
       }
     }

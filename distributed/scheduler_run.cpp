@@ -11,6 +11,7 @@
 #include "distributed/frame_runner.hpp"
 #include "distributed/hierarchical_rank.hpp"
 #include "distributed/noise_window.hpp"
+#include "distributed/rank_ledger.hpp"
 #include "distributed/rank_watchdog.hpp"
 
 namespace frontsteal::mpi {
@@ -85,6 +86,7 @@ bool SchedulerRun::run_pass(int frames, double planted_s, std::vector<double>& f
   bool ok = true;
   for (int f = 0; f < frames && ok; ++f) {
     set_frame(f);
+    ledger_begin_frame(f, name_);
     set_phase("frame setup");
     std::fill(counts_.begin(), counts_.end(), 0u);
     // Between frames (every rank is past the previous frame's done barrier): install, re-arm, reset.
@@ -119,6 +121,7 @@ bool SchedulerRun::run_pass(int frames, double planted_s, std::vector<double>& f
     set_phase("frame done barrier");
     win_.sync();
     MPI_Barrier(MPI_COMM_WORLD);  // frame done (E3/E6)
+    ledger_frame_done();
     note_progress();
     // rma-seeded: the next lists are contiguous blocks of equal measured cost (cost_seeded_lists.hpp), from
     // every rank's item times of this frame; the all-reduce is part of this frame's time.
