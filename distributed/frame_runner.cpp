@@ -8,6 +8,7 @@
 #include <random>
 #include <thread>
 
+#include "distributed/idle_backoff.hpp"
 #include "distributed/rank_ledger.hpp"
 #include "distributed/rank_watchdog.hpp"
 #include "measure/paired_comparison.hpp"
@@ -130,10 +131,8 @@ void FrameRunner::rma_frame(Frame& fr, RangeList& log) {
     // takes the CPU from the very owner it waits for.
     if (got) {
       failed_rounds = 0;
-    } else if (++failed_rounds < 4) {
-      std::this_thread::yield();
     } else {
-      std::this_thread::sleep_for(std::chrono::microseconds(1u << std::min<std::uint32_t>(failed_rounds - 4, 8)));
+      idle_back_off(++failed_rounds);
     }
   }
   stats_.idle_s += std::chrono::duration<double>(Clock::now() - idle_start).count() - (stats_.busy_s - busy_before);

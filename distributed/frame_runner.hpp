@@ -71,6 +71,8 @@ class FrameRunner {
   // The rank's statistics, with the medians and their 95 % bootstrap intervals filled in.
   RankStats& finish_stats();
   WindowProtocol& protocol() { return *protocol_; }
+  // The other ranks in this rank's random victim order (§4.2.1).
+  const std::vector<int>& victims() const { return victims_; }
   // rma-seeded: seconds each item of the current frame took on this rank (0 for items other ranks ran).
   std::vector<float>& item_costs() { return item_costs_; }
 

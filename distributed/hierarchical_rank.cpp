@@ -5,6 +5,7 @@
 #include <chrono>
 #include <random>
 
+#include "distributed/idle_backoff.hpp"
 #include "distributed/rank_ledger.hpp"
 #include "distributed/rank_watchdog.hpp"
 
@@ -15,16 +16,6 @@ using Clock = std::chrono::steady_clock;
 
 // The largest chunk a worker takes from the rank list at once: a chunk is no longer stealable by other ranks.
 constexpr std::uint32_t kMaxChunk = 256;
-
-// An idle loop's pause after `failed` fruitless rounds: yield three times, then sleep 1, 2, 4 ... 256 us (with
-// more threads than cores a spinning idle worker takes the CPU from the very workers it waits for).
-void back_off(std::uint32_t failed) {
-  if (failed < 4) {
-    std::this_thread::yield();
-  } else {
-    std::this_thread::sleep_for(std::chrono::microseconds(1u << std::min<std::uint32_t>(failed - 4, 8)));
-  }
-}
 
 }  // namespace
 
@@ -140,7 +131,7 @@ void HierarchicalRank::work(std::uint32_t t) {
     if (t == 0) {
       if (!remote_step(failed_rounds)) return;
     } else {
-      back_off(++failed_rounds);
+      idle_back_off(++failed_rounds);
     }
   }
 }
@@ -174,7 +165,7 @@ bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
     std::lock_guard<std::mutex> lock(rank_mutex_);
     if (!local_active_.all_idle()) {              // a sibling still holds work: it may yet be stolen locally
       if (progress_.enabled()) progress_.call();  // thieves' operations on this rank's window wait for it (TCP)
-      back_off(++failed_rounds);
+      idle_back_off(++failed_rounds);
       idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start).count();
       return true;
     }
@@ -207,7 +198,7 @@ bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
     idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start).count();
     return true;
   }
-  back_off(++failed_rounds);
+  idle_back_off(++failed_rounds);
   note_progress();
   idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start).count();
   return true;

@@ -10,17 +10,11 @@
 #include "distributed/rank_watchdog.hpp"
 #include "distributed/scheduler_run.hpp"
 #include "measure/cpu_speed_probe.hpp"
+#include "measure/machine_info.hpp"
 #include "measure/round_order.hpp"
 
 namespace frontsteal::mpi {
 namespace {
-
-double median_of(std::vector<double> v) {
-  if (v.empty()) return 0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 std::string planted_label(const Options& o) {
   char pct[32];
@@ -56,9 +50,9 @@ PairedRun run_paired_rounds(const Options& o, Workload& wl, int rank, int ranks,
     SchedulerRun warm(o.reference, o, wl, rank, ranks, win, owner_progress_us);
     std::vector<double> frame_s;
     run.ok = warm.run_pass(o.frames, 0.0, frame_s);
-    double planted_s = o.planted_pct / 100.0 * median_of(frame_s);
+    double planted_s = o.planted_pct / 100.0 * median(frame_s);
     MPI_Bcast(&planted_s, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    run.warmup_frame_s = median_of(frame_s);
+    run.warmup_frame_s = median(frame_s);
     for (PairedArm& arm : run.arms) {
       if (arm.role == ArmRole::kPlanted) arm.planted_s = planted_s;
     }

@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "distributed/frame_runner.hpp"
+#include "distributed/idle_backoff.hpp"
 
 namespace frontsteal::mpi {
 
@@ -41,9 +42,7 @@ void FrameRunner::request_frame(Frame& fr, RangeList list, RangeList& log) {
               "MPI_Recv");
     outstanding = -1;
     if (words == 0) {  // an empty answer: back off a little before asking the next victim (as rma's idle loop)
-      if (++empty_replies >= 4) {
-        std::this_thread::sleep_for(std::chrono::microseconds(1u << std::min<std::uint32_t>(empty_replies - 4, 8)));
-      }
+      idle_back_off(++empty_replies, /*yield_first=*/false);
       continue;
     }
     empty_replies = 0;

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <random>
 #include <utility>
 
 #include "distributed/cost_seeded_lists.hpp"
@@ -64,13 +63,7 @@ SchedulerRun::SchedulerRun(std::string name, const Options& o, Workload& wl, int
                  runner_->protocol().backend_name().data(), runner_->protocol().policy_name().data());
   }
   if (name_ == "hier") {
-    std::vector<int> victims;
-    for (int v = 0; v < ranks; ++v) {
-      if (v != rank) victims.push_back(v);
-    }
-    std::mt19937_64 rng(0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(rank + 1));
-    std::shuffle(victims.begin(), victims.end(), rng);  // §4.2.1: victims in a random order per processor
-    hier_ = std::make_unique<HierarchicalRank>(o, wl, rank, runner_->protocol(), std::move(victims), owner_progress_us);
+    hier_ = std::make_unique<HierarchicalRank>(o, wl, rank, runner_->protocol(), runner_->victims(), owner_progress_us);
   }
   noise_->start();
 }
