@@ -41,7 +41,7 @@ namespace frontsteal::mpi {
 // The schedulers that run core's protocol over the window (rma, rma with cost-seeded lists, and hier at the rank
 // level: hierarchical_rank.hpp).
 inline bool runs_window_protocol(const std::string& scheduler) {
-  return scheduler == "rma" || scheduler == "rma-seeded" || scheduler == "hier";
+  return scheduler == "rma" || scheduler == "rma-seeded" || scheduler == "hier" || scheduler == "hier-seeded";
 }
 
 inline constexpr int kTagRequest = 181;

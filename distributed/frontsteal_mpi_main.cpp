@@ -48,8 +48,8 @@ int run_all(const fm::Options& o, fm::Workload& wl, int rank, int ranks, fm::Rma
   for (const fm::SchedulerResult& r : results) {
     double steals = 0;
     for (const fm::RankStats& s : r.ranks) steals += s.steals;
-    if (rank == 0 && status == 0 && o.require_steals && (r.name == "rma" || r.name == "request" || r.name == "hier") &&
-        steals == 0) {
+    if (rank == 0 && status == 0 && o.require_steals &&
+        (r.name == "rma" || r.name == "request" || r.name == "hier" || r.name == "hier-seeded") && steals == 0) {
       std::fprintf(stderr, "%s: --require-steals: scheduler %s made no steal in %d frames\n", fm::kProgram.data(),
                    r.name.c_str(), o.frames);
       status = 1;
@@ -57,7 +57,7 @@ int run_all(const fm::Options& o, fm::Workload& wl, int rank, int ranks, fm::Rma
   }
   MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (rank == 0 && status == 0) {
-    const fm::RunSummary summary{ranks, o.scene, wl.n, o.frames, progress, o.work_ns, o.skew};
+    const fm::RunSummary summary{ranks, o.scene, wl.n, o.frames, progress, o.work_ns, o.skew, o.threads, o.chunk_us};
     if (o.rounds > 0) {
       fm::PairedReport report{
           o.reference, paired.rounds_done, o.frames, o.margin_pct, fm::compare_arms(paired, o.margin_pct), {}};

@@ -33,7 +33,7 @@ struct HierarchicalRank::Worker {
 };
 
 HierarchicalRank::HierarchicalRank(const Options& o, Workload& wl, int rank, WindowProtocol& window,
-                                   std::vector<int> remote_victims, double owner_progress_us)
+                                   std::vector<int> remote_victims, double owner_progress_us, bool record_costs)
     : o_(o),
       wl_(wl),
       rank_(rank),
@@ -45,6 +45,7 @@ HierarchicalRank::HierarchicalRank(const Options& o, Workload& wl, int rank, Win
       start_(static_cast<std::ptrdiff_t>(threads_)),
       end_(static_cast<std::ptrdiff_t>(threads_)),
       mean_item_ns_(std::max(1.0, static_cast<double>(o.work_ns))) {
+  if (record_costs) item_costs_.assign(wl.n, 0.0f);
   // A local list holds a chunk or a share of one: at most kMaxChunk ranges.
   for (std::uint32_t t = 0; t < threads_; ++t) slots_.push_back(std::make_unique<LocalSlot>(kMaxChunk));
   std::mt19937_64 rng(0x51ED270B27ull * static_cast<std::uint64_t>(rank + 1));
@@ -131,7 +132,7 @@ void HierarchicalRank::work(std::uint32_t t) {
     if (t == 0) {
       if (!remote_step(failed_rounds)) return;
     } else {
-      idle_back_off(++failed_rounds);
+      idle_wait(++failed_rounds);
     }
   }
 }
@@ -176,6 +177,7 @@ bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
   }
   if (window_.all_idle()) {  // A3: no rank holds work
     frame_over_.store(true, std::memory_order_release);
+    wake_workers();
     return false;
   }
   StealHooks hooks;
@@ -193,6 +195,7 @@ bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
       std::lock_guard<std::mutex> lock(rank_mutex_);
       window_.install(window_.share());
     }
+    wake_workers();
     rank_active_ = true;
     failed_rounds = 0;
     idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start).count();
@@ -204,12 +207,32 @@ bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
   return true;
 }
 
+// The back-off schedule of idle_backoff.hpp, cut short by wake_workers().
+void HierarchicalRank::idle_wait(std::uint32_t failed_rounds) {
+  if (failed_rounds < 4) return std::this_thread::yield();
+  const auto pause = std::chrono::microseconds(1u << std::min<std::uint32_t>(failed_rounds - 4, 8));
+  std::unique_lock<std::mutex> lock(wake_mutex_);
+  const std::uint64_t seen = wake_generation_;
+  wake_.wait_for(lock, pause, [&] { return wake_generation_ != seen; });
+}
+
+void HierarchicalRank::wake_workers() {
+  if (threads_ < 2) return;
+  {
+    std::lock_guard<std::mutex> lock(wake_mutex_);
+    ++wake_generation_;
+  }
+  wake_.notify_all();
+}
+
 void HierarchicalRank::execute(Worker& w, ItemId id) {
   const auto t0 = Clock::now();
   w.triangles += wl_.run_on(frame_, id, w.index);
   std::atomic_ref<std::uint32_t>((*counts_)[id]).fetch_add(1, std::memory_order_relaxed);
   ledger_mark(id);
-  w.busy_s += std::chrono::duration<double>(Clock::now() - t0).count();
+  const double took = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (!item_costs_.empty()) item_costs_[id] = static_cast<float>(took);  // each id runs once: no two writers
+  w.busy_s += took;
   w.items += 1;
   if (w.index == 0 && progress_.maybe_call(Clock::now())) progress_calls_ += 1;  // only worker 0 calls MPI
   append_merging(w.log, {id, id + 1});

@@ -28,11 +28,16 @@
 // EXACTLY ONCE: every item of the rank list is claimed once (core over the window, the rank's claims serialized),
 // lands in one local list, and is claimed there once (core over std atomics); the audit checks it (scheduler_run).
 // NEXT FRAME: the rank's next list is every item its workers ran this frame, stolen work included (§4.2.1 at the
-// rank level); local lists start empty.
+// rank level); local lists start empty. hier-seeded instead records every item's time (item_costs) for the
+// caller's cost-balanced blocks (cost_seeded_lists.hpp).
+// WAKE-UPS: a worker other than 0 that found nothing backs off (idle_backoff.hpp) on a condition variable, and
+// worker 0 wakes them when it installs a remote share and when the frame ends: with a few ranks holding the
+// work, a rank's threads otherwise sleep through up to 256 us of a share or of the frame's end.
 #pragma once
 
 #include <atomic>
 #include <barrier>
+#include <condition_variable>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -55,8 +60,9 @@ class HierarchicalRank {
   // `remote_victims`: the other ranks, in this rank's random order. Starts T - 1 threads that wait for frames.
   // `owner_progress_us`: worker 0 calls into MPI between items at most this often (owner_progress.hpp), so that
   // other ranks' one-sided operations on this rank's window complete where the transport needs it (TCP).
+  // `record_costs`: keep every item's time of the last frame in item_costs() (hier-seeded).
   HierarchicalRank(const Options& o, Workload& wl, int rank, WindowProtocol& window, std::vector<int> remote_victims,
-                   double owner_progress_us);
+                   double owner_progress_us, bool record_costs = false);
   ~HierarchicalRank();
   HierarchicalRank(const HierarchicalRank&) = delete;
   HierarchicalRank& operator=(const HierarchicalRank&) = delete;
@@ -69,6 +75,8 @@ class HierarchicalRank {
   // Remote steal latencies (us), for the medians.
   const std::vector<double>& steal_latencies_us() const { return steal_latencies_us_; }
   std::uint32_t chunk() const { return chunk_; }
+  // With record_costs: seconds per item id this rank ran (0 for the others); the caller resets it.
+  std::vector<float>& item_costs() { return item_costs_; }
 
  private:
   using LocalSlot = ActivitySlot<StdBackend, Fenced>;
@@ -79,6 +87,8 @@ class HierarchicalRank {
   bool refill(Worker& w);
   bool remote_step(std::uint32_t& failed_rounds);
   void execute(Worker& w, ItemId id);
+  void idle_wait(std::uint32_t failed_rounds);  // a worker other than 0 backs off until woken
+  void wake_workers();                          // worker 0: a share arrived or the frame is over
 
   const Options& o_;
   Workload& wl_;
@@ -94,6 +104,10 @@ class HierarchicalRank {
   std::mutex rank_mutex_;    // serializes the rank's claims and installs on its window slot
   bool rank_active_ = true;  // worker 0 only: this rank counts in the window's active count
   std::atomic<bool> frame_over_{false};
+  std::mutex wake_mutex_;
+  std::condition_variable wake_;
+  std::uint64_t wake_generation_ = 0;  // under wake_mutex_
+  std::vector<float> item_costs_;      // hier-seeded only, else empty
   std::atomic<bool> stop_{false};
   std::barrier<> start_, end_;
   std::vector<std::thread> threads_started_;

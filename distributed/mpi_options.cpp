@@ -100,12 +100,15 @@ Options parse_options(int argc, char** argv) {
       ->check(scene_validator());
   cli.option("--frames", o.frames, "frames along the camera path")->check(CLI::Range(1, 100000));
   cli.app()
-      .add_option("--schedulers", o.schedulers,
-                  "comma list of rma,rma-seeded (lists from the last frame's measured costs),request,central,"
-                  "static (round robin),static-space (contiguous blocks of ids: regions of space),hier (ranks x "
-                  "--threads: stealing among a rank's threads, then across ranks)")
+      .add_option(
+          "--schedulers", o.schedulers,
+          "comma list of rma,rma-seeded (lists from the last frame's measured costs),request,central,"
+          "static (round robin),static-space (contiguous blocks of ids: regions of space),hier (ranks x "
+          "--threads: stealing among a rank's threads, then across ranks),hier-seeded (hier, lists from the last "
+          "frame's measured costs)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space", "hier"}));
+      ->check(
+          CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space", "hier", "hier-seeded"}));
   cli.option("--work-ns", o.work_ns, "synthetic: cost of a light item (cascade: of the mean item) in ~ns of busy work")
       ->check(CLI::Range(0u, 100000000u));
   cli.option("--skew", o.skew, "synthetic: the heavy fifth of the ids (a window that moves each frame) costs K x")
@@ -157,7 +160,8 @@ Options parse_options(int argc, char** argv) {
              "for --frames frames, in a random order; each is then compared with --reference (0: one pass each)")
       ->check(CLI::Range(0, 100000));
   cli.option("--reference", o.reference, "--rounds: the scheduler every other arm is compared with")
-      ->check(CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space", "hier"}));
+      ->check(
+          CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space", "hier", "hier-seeded"}));
   cli.option("--margin-pct", o.margin_pct, "--rounds: equivalence margin of the verdicts, % of time")
       ->check(CLI::Range(0.1, 50.0));
   cli.option("--planted-pct", o.planted_pct,
@@ -180,8 +184,9 @@ Options parse_options(int argc, char** argv) {
              "frame were lost, and exit (run without mpirun)");
   cli.quiet(o.quiet);
   cli.parse(argc, argv);
-  const bool hier = std::find(o.schedulers.begin(), o.schedulers.end(), "hier") != o.schedulers.end() ||
-                    (o.rounds > 0 && o.reference == "hier");
+  const auto is_hier = [](const std::string& s) { return s == "hier" || s == "hier-seeded"; };
+  const bool hier =
+      std::any_of(o.schedulers.begin(), o.schedulers.end(), is_hier) || (o.rounds > 0 && is_hier(o.reference));
   if (hier && o.owner_fence == "win-sync") {
     cli.usage_error(
         "--owner-fence win-sync calls MPI on every claim, and under hier any worker thread claims: "

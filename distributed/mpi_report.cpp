@@ -153,6 +153,8 @@ report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>&
   js["noise_warning"] = noise_warning(results);
   js["work_ns"] = run.work_ns;  // with scene and items: what frontsteal-mpi-simulate --validate needs to re-run it
   js["skew"] = run.skew;
+  js["threads"] = run.threads;  // hier's workers per rank and refill size, for the same
+  js["chunk_us"] = run.chunk_us;
   return js;
 }
 

@@ -23,6 +23,8 @@ struct RunSummary {
   ProgressChoice progress;
   std::uint32_t work_ns = 0;  // synthetic shapes: ns per cost unit (--work-ns)
   std::uint32_t skew = 0;     // synthetic:N's heavy fifth (--skew)
+  int threads = 1;            // hier's workers per rank (--threads)
+  double chunk_us = 0;        // hier's refill size (--chunk-us)
 };
 
 // The paired comparisons of a --rounds run (paired_rounds.hpp), as reported.

@@ -62,8 +62,9 @@ SchedulerRun::SchedulerRun(std::string name, const Options& o, Workload& wl, int
     std::fprintf(stderr, "%s: rma: core/stealing_protocol.hpp over the %s backend, policy %s\n", kProgram.data(),
                  runner_->protocol().backend_name().data(), runner_->protocol().policy_name().data());
   }
-  if (name_ == "hier") {
-    hier_ = std::make_unique<HierarchicalRank>(o, wl, rank, runner_->protocol(), runner_->victims(), owner_progress_us);
+  if (name_ == "hier" || name_ == "hier-seeded") {
+    hier_ = std::make_unique<HierarchicalRank>(o, wl, rank, runner_->protocol(), runner_->victims(), owner_progress_us,
+                                               name_ == "hier-seeded");
   }
   noise_->start();
 }
@@ -116,10 +117,11 @@ bool SchedulerRun::run_pass(int frames, double planted_s, std::vector<double>& f
     MPI_Barrier(MPI_COMM_WORLD);  // frame done (E3/E6)
     ledger_frame_done();
     note_progress();
-    // rma-seeded: the next lists are contiguous blocks of equal measured cost (cost_seeded_lists.hpp), from
-    // every rank's item times of this frame; the all-reduce is part of this frame's time.
-    if (name_ == "rma-seeded") {
-      std::vector<float>& mine = runner.item_costs();
+    // rma-seeded, hier-seeded: the next lists are contiguous blocks of equal measured cost
+    // (cost_seeded_lists.hpp), from every rank's item times of this frame; the all-reduce is part of this frame's
+    // time.
+    if (name_ == "rma-seeded" || name_ == "hier-seeded") {
+      std::vector<float>& mine = hier_ ? hier_->item_costs() : runner.item_costs();
       std::vector<float> all(mine.size());
       MPI_Allreduce(mine.data(), all.data(), static_cast<int>(mine.size()), MPI_FLOAT, MPI_SUM, MPI_COMM_WORLD);
       list = cost_balanced_blocks(all, static_cast<WorkerId>(ranks_))[static_cast<std::size_t>(rank_)];
