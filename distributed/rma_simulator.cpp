@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "distributed/cost_seeded_lists.hpp"
 #include "distributed/synthetic_cost.hpp"
 #include "papers/simulation/event_queue.hpp"
 #include "papers/simulation/exactly_once_audit.hpp"
@@ -15,10 +16,37 @@
 namespace frontsteal::mpi::sim {
 namespace {
 
+bool hier(Scheduler s) { return s == Scheduler::kHier || s == Scheduler::kHierSeeded; }
+
 constexpr double kYieldNs = 1000;        // an idle loop's sched_yield on a loaded core (assumed)
 constexpr double kInstallRetryNs = 500;  // a thief's install waits for its own LockList (held by a thief)
 
 enum class Step : std::uint8_t { kOwner, kRoundStart, kTryVictim, kT1, kT2, kT3, kT4, kInstall, kAwaitReply, kDone };
+
+// hier: the largest chunk a worker takes from its rank list at once (hierarchical_rank.cpp's kMaxChunk).
+constexpr std::uint32_t kMaxChunk = 256;
+
+// The idle loop's back-off after `failed` fruitless rounds (idle_backoff.hpp): yields, then 1, 2, 4 ... 256 us.
+double backoff_ns(std::uint32_t& failed) {
+  ++failed;
+  return failed < 4 ? kYieldNs : 1000.0 * (1u << std::min<std::uint32_t>(failed - 4, 8));
+}
+
+// What a hier worker is doing until its next event (the loss account's parts).
+enum Part : std::uint8_t { kWork, kClaims, kLocalSteals, kRemoteSteals, kIdle, kParts };
+
+// hier: one worker thread of a rank. Its local list is [front, end) of `list`.
+struct Worker {
+  std::vector<ItemId> list;
+  std::uint32_t front = 0, end = 0, failed_rounds = 0;
+  bool holding = false, done = false;
+  double finish = 0, since = 0;
+  double installed = 0;  // its list is visible to sibling thieves from this time (a share in flight is not)
+  double next_at = 0;    // its one live event: an earlier one superseded by a wake-up is ignored
+  Part pending = kIdle;
+  double parts[kParts] = {};
+  std::vector<std::uint32_t> siblings;  // local victims, in this worker's random order
+};
 
 struct Rank {
   std::vector<ItemId> list, executed, share;
@@ -31,6 +59,13 @@ struct Rank {
   std::size_t victim_index = 0, next_request = 0;
   std::uint32_t mid = 0, old_end = 0, front_read = 0, failed_rounds = 0;
   std::vector<std::pair<int, double>> pending;  // request: (thief, arrival)
+  // hier: the rank list is [front, end) of `list` above; these are the rank's own.
+  double mutex_free = 0;          // the rank mutex is free from this time on
+  std::uint32_t chunk = 1;        // items per refill this frame
+  std::int64_t local_active = 0;  // workers holding work (the local active count)
+  bool rank_active = true;        // counts in the global active count
+  bool frame_over = false;        // worker 0 read the global count at 0
+  double busy_ns = 0, items = 0;  // last frame's item time, for the chunk
 };
 
 class Model {
@@ -42,6 +77,7 @@ class Model {
         lat_(lat),
         defect_(d),
         cost_(w.shape, w.items, w.frames, w.skew),
+        threads_(hier(s) || s == Scheduler::kStatic || s == Scheduler::kStaticSpace ? std::max(1, w.threads) : 1),
         ranks_(static_cast<std::size_t>(p)),
         audit_(w.items) {
     std::vector<std::vector<ItemId>> blocks = simulation::contiguous_blocks(w.items, static_cast<std::uint32_t>(p));
@@ -50,6 +86,11 @@ class Model {
       std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(r));
       k.victims = simulation::victim_order(r, p, rng);
       k.list = blocks[static_cast<std::size_t>(r)];
+      for (int t = 0; t < threads_; ++t) {
+        Worker x;
+        x.siblings = simulation::victim_order(static_cast<std::uint32_t>(t), static_cast<std::uint32_t>(threads_), rng);
+        workers_.push_back(std::move(x));
+      }
     }
     space_blocks_ = std::move(blocks);
   }
@@ -58,17 +99,29 @@ class Model {
     Result res;
     res.scheduler = s_;
     res.ranks = p_;
+    res.threads = threads_;
     for (int f = 0; f < w_.frames && res.exactly_once; ++f) {
       frame_ = f;
       const bool fixed = s_ == Scheduler::kStatic || s_ == Scheduler::kStaticSpace;
       const double t = fixed ? static_frame() : event_frame();
       res.time_ns += t + barrier_ns();
+      res.frame_ns.push_back(t + barrier_ns());
+      if (hier(s_)) account_frame(res.loss, t);
       audit(res);
     }
+    double later_work = 0;
     for (ItemId id = 0; id < w_.items; ++id) {
-      for (int f = 0; f < w_.frames; ++f) res.work_ns += cost(f, id);
+      for (int f = 0; f < w_.frames; ++f) {
+        res.work_ns += cost(f, id);
+        if (f > 0) later_work += cost(f, id);
+      }
     }
-    res.efficiency = res.work_ns / (p_ * res.time_ns);
+    const double workers = static_cast<double>(p_) * threads_;
+    res.efficiency = res.work_ns / (workers * res.time_ns);
+    if (res.frame_ns.size() > 1) {
+      res.efficiency_carried = later_work / (workers * (res.time_ns - res.frame_ns.front()));
+    }
+    res.local_steals = local_steals_;
     res.steals = steals_;
     res.steal_attempts = attempts_;
     res.remote_operations = remote_ops_;
@@ -103,7 +156,23 @@ class Model {
     }
     return start + latency / 2;
   }
-  void at_time(double t, int r) { events_.push(t, r); }
+  // Rank r's next step at t: under hier, its worker 0's (the only one that calls MPI).
+  void at_time(double t, int r) {
+    if (hier(s_)) return wake(t, r * threads_);
+    events_.push(t, r * threads_);
+  }
+  // hier: rank r's workers backing off (not worker 0) take their next step at t (hierarchical_rank.cpp's notify).
+  void wake_siblings(double t, int r) {
+    for (int t2 = 1; t2 < threads_; ++t2) {
+      const Worker& y = worker(r * threads_ + t2);
+      if (!y.done && y.pending == kIdle && y.next_at > t) wake(t, r * threads_ + t2);
+    }
+  }
+  // hier: worker `id`'s next event at t (replacing the one it had).
+  void wake(double t, int id) {
+    worker(id).next_at = t;
+    events_.push(t, id);
+  }
 
   double static_frame() {
     double worst = 0;
@@ -121,7 +190,7 @@ class Model {
           at(r).executed.push_back(id);
         }
       }
-      worst = std::max(worst, t);
+      worst = std::max(worst, t / threads_);  // a rank's threads share its items perfectly: generous to static
     }
     return worst;
   }
@@ -130,11 +199,13 @@ class Model {
     active_ = p_;
     next_item_ = 0;
     events_ = Events(simulation::Ties::kInArrivalOrder);  // the event limit counts one frame
+    if (s_ == Scheduler::kHierSeeded && frame_ > 0) seed_lists();
     for (int r = 0; r < p_; ++r) {
       Rank& k = at(r);
       if (s_ == Scheduler::kRma || s_ == Scheduler::kRequest) {
         if (frame_ > 0) k.list = k.executed;  // §4.2.1: next frame's list is what the rank processed
       }
+      if (hier(s_)) start_hier_frame(r);
       k.executed.clear();
       k.front = 0;
       k.end = static_cast<std::uint32_t>(k.list.size());
@@ -143,11 +214,17 @@ class Model {
       k.failed_rounds = 0;
       k.pending.clear();
       k.step = Step::kOwner;
-      at_time(0, r);
+      for (int t = 0; t < threads_; ++t) hier(s_) ? wake(0, r * threads_ + t) : events_.push(0, r);
     }
     while (!events_.empty()) {
-      const auto [t, r] = events_.pop();
-      s_ == Scheduler::kCentral ? central_step(t, r) : stealing_step(t, r);
+      const auto [t, id] = events_.pop();
+      if (s_ == Scheduler::kCentral) {
+        central_step(t, id);
+      } else if (hier(s_)) {
+        hier_event(t, id);
+      } else {
+        stealing_step(t, id);
+      }
     }
     double worst = 0;
     for (int r = 0; r < p_; ++r) worst = std::max(worst, at(r).finish);
@@ -238,6 +315,13 @@ class Model {
         if (active_ == 0) {
           k.step = Step::kDone;
           k.finish = c;
+          if (hier(s_)) {
+            k.frame_over = true;
+            Worker& x = worker(r * threads_);
+            x.parts[kRemoteSteals] += c - t;
+            finish(x, k, c);
+            wake_siblings(c, r);  // the frame's end reaches the workers backing off at once
+          }
           return;
         }
         k.victim_index = 0;
@@ -301,15 +385,174 @@ class Model {
 
   int current(const Rank& k) const { return k.victims[k.victim_index]; }
   Rank& victim(const Rank& k) { return at(current(k)); }
-  double backoff(Rank& k) {
-    ++k.failed_rounds;
-    return k.failed_rounds < 4 ? kYieldNs : 1000.0 * (1u << std::min<std::uint32_t>(k.failed_rounds - 4, 8));
+  double backoff(Rank& k) { return backoff_ns(k.failed_rounds); }
+
+  // ---- hier: ranks x threads (hierarchical_rank.hpp) ----
+  Worker& worker(int id) { return workers_[static_cast<std::size_t>(id)]; }
+
+  // hier-seeded: every rank's next list, a contiguous block of equal cost in the last frame.
+  void seed_lists() {
+    std::vector<float> last(w_.items);
+    for (ItemId id = 0; id < w_.items; ++id) last[id] = static_cast<float>(cost(frame_ - 1, id));
+    const std::vector<RangeList> blocks = cost_balanced_blocks(last, static_cast<WorkerId>(p_));
+    for (int r = 0; r < p_; ++r) {
+      Rank& k = at(r);
+      k.list.clear();
+      for (const IdRange& range : blocks[static_cast<std::size_t>(r)]) {
+        for (ItemId id = range.begin; id < range.end; ++id) k.list.push_back(id);
+      }
+    }
+  }
+
+  void start_hier_frame(int r) {
+    Rank& k = at(r);
+    if (frame_ > 0 && s_ == Scheduler::kHier) {  // the rank's next list: every item its workers ran, in id order
+      k.list = k.executed;
+      std::sort(k.list.begin(), k.list.end());
+    }
+    const double mean = k.items > 0 ? k.busy_ns / k.items : std::max(1.0, w_.light_ns);
+    k.chunk = static_cast<std::uint32_t>(std::clamp(w_.chunk_us * 1000 / mean, 1.0, double{kMaxChunk}));
+    k.busy_ns = k.items = 0;
+    k.mutex_free = 0;
+    k.local_active = 0;
+    k.rank_active = true;
+    k.frame_over = false;
+    for (int t = 0; t < threads_; ++t) {
+      Worker& x = worker(r * threads_ + t);
+      x.list.clear();
+      x.front = x.end = x.failed_rounds = 0;
+      x.holding = x.done = false;
+      x.finish = x.since = x.installed = 0;
+      x.pending = kIdle;
+    }
+  }
+
+  void finish(Worker& x, Rank& k, double t) {
+    x.done = true;
+    x.finish = t;
+    x.since = t;
+    k.finish = std::max(k.finish, t);
+  }
+
+  void hier_event(double t, int id) {
+    Worker& x = worker(id);
+    if (t != x.next_at) return;  // superseded by a wake-up
+    const int r = id / threads_;
+    Rank& k = at(r);
+    x.parts[x.pending] += t - x.since;  // what the worker did since its last event
+    x.since = t;
+    if (x.done) return;
+    if (k.frame_over) return finish(x, k, t);
+    if (id % threads_ == 0 && k.step != Step::kOwner) {  // worker 0 inside a remote steal (the rma thief)
+      x.pending = kRemoteSteals;
+      return stealing_step(t, r);
+    }
+    hier_worker(t, r, id);
+  }
+
+  // A hier worker free at t: its local list, a chunk of the rank list, a sibling, or (worker 0, the rank dry)
+  // another rank.
+  void hier_worker(double t, int r, int id) {
+    Worker& x = worker(id);
+    Rank& k = at(r);
+    const bool main_thread = id % threads_ == 0;
+    if (x.front < x.end) {
+      const ItemId item = x.list[x.front++];
+      k.executed.push_back(item);
+      const bool due = main_thread && lat_.needs_target_progress && t >= k.next_call;
+      if (due) k.next_call = t + lat_.progress_every;
+      const double overhead = lat_.local_claim + (due ? lat_.progress_call : 0);
+      const double c = cost(frame_, item);
+      x.parts[kClaims] += overhead;
+      x.since = t + overhead;
+      x.pending = kWork;
+      k.busy_ns += c;
+      k.items += 1;
+      if (main_thread) {
+        k.busy = true;
+        k.busy_until = t + overhead + c;
+      }
+      return wake(t + overhead + c, id);
+    }
+    if (main_thread) k.busy = false;
+    if (x.holding) {  // A2 (local)
+      --k.local_active;
+      x.holding = false;
+    }
+    // A chunk of the rank list, claimed item by item under the rank mutex.
+    const double start = std::max(t, k.mutex_free);
+    const std::uint32_t n =
+        k.front < k.end ? std::min(k.chunk, k.end - k.front) : 0;  // a thief may set End below Front
+    k.mutex_free = start + lat_.rank_lock + n * lat_.claim;
+    x.parts[kClaims] += k.mutex_free - t;
+    t = x.since = k.mutex_free;
+    if (n > 0) {
+      x.list.assign(k.list.begin() + k.front, k.list.begin() + k.front + n);
+      k.front += n;
+      return hold_local(x, k, t, id);
+    }
+    // Half of a sibling's local list.
+    for (std::uint32_t v : x.siblings) {
+      Worker& y = worker(r * threads_ + static_cast<int>(v));
+      if (y.front >= y.end || y.installed > t) continue;
+      const std::uint32_t mid = simulation::steal_mid(y.front, y.end);
+      if (mid >= y.end) continue;
+      x.list.assign(y.list.begin() + mid, y.list.begin() + y.end);
+      y.end = mid;  // from here the sibling claims nothing at or past mid
+      ++local_steals_;
+      x.parts[kLocalSteals] += lat_.local_steal;
+      t = x.since = t + lat_.local_steal;
+      return hold_local(x, k, t, id);
+    }
+    // Nothing in the rank for this worker: worker 0 goes to other ranks once every sibling is dry.
+    if (!main_thread || k.local_active > 0) {
+      x.pending = kIdle;
+      return wake(t + backoff_ns(x.failed_rounds), id);
+    }
+    if (k.rank_active) {  // A2 for the rank
+      k.rank_active = false;
+      --active_;
+      const double c = op(t, 0, lat_.fetch_op, true);
+      x.parts[kRemoteSteals] += c - t;
+      t = x.since = c;
+    }
+    x.pending = kRemoteSteals;
+    k.step = Step::kRoundStart;
+    k.victim_index = 0;
+    stealing_step(t, r);
+  }
+
+  // x now holds x.list (a chunk or a stolen half) from t: it counts in the local active count (A1, local), and
+  // claims its first item.
+  void hold_local(Worker& x, Rank& k, double t, int id) {
+    x.front = 0;
+    x.end = static_cast<std::uint32_t>(x.list.size());
+    x.installed = t;
+    x.holding = true;
+    x.failed_rounds = 0;
+    ++k.local_active;
+    hier_worker(t, id / threads_, id);  // the owner claims its first item at once (wait-free), before any thief
+  }
+
+  // After a hier frame of length `frame`: each worker's parts, its tail and the barrier, into `loss`.
+  void account_frame(LossAccount& loss, double frame) {
+    for (Worker& x : workers_) {
+      loss.work += x.parts[kWork];
+      loss.claims += x.parts[kClaims];
+      loss.local_steals += x.parts[kLocalSteals];
+      loss.remote_steals += x.parts[kRemoteSteals];
+      loss.idle += x.parts[kIdle];
+      loss.tail += frame - x.finish;
+      loss.barrier += barrier_ns();
+      std::fill(std::begin(x.parts), std::end(x.parts), 0.0);
+    }
   }
 
   void try_victim(double t, int r) {
     Rank& k = at(r);
     if (k.victim_index >= k.victims.size()) {
       k.step = Step::kRoundStart;
+      if (hier(s_)) worker(r * threads_).pending = kIdle;
       return at_time(t + backoff(k), r);
     }
     ++attempts_;
@@ -340,6 +583,10 @@ class Model {
   void take_share(double t, int r) {
     Rank& k = at(r);
     ++steals_;
+    if (hier(s_)) {
+      k.rank_active = true;  // the share goes into the rank list (A1 came with it)
+      wake_siblings(t, r);
+    }
     k.list = k.share;
     k.share.clear();
     k.front = 0;
@@ -378,11 +625,13 @@ class Model {
   Latencies lat_;
   Defect defect_;
   SyntheticCost cost_;
+  int threads_;
+  std::vector<Worker> workers_;  // hier: rank r's worker t is workers_[r * threads_ + t]
   std::vector<Rank> ranks_;
   std::vector<std::vector<ItemId>> space_blocks_;  // static-space: each rank's contiguous block
   int frame_ = 0;
   std::int64_t active_ = 0;
-  std::uint64_t next_item_ = 0, steals_ = 0, attempts_ = 0, remote_ops_ = 0;
+  std::uint64_t next_item_ = 0, steals_ = 0, attempts_ = 0, remote_ops_ = 0, local_steals_ = 0;
   double steal_ns_ = 0;
   using Events = simulation::EventQueue<int>;
   Events events_{simulation::Ties::kInArrivalOrder};
@@ -392,7 +641,30 @@ class Model {
 }  // namespace
 
 Result simulate(Scheduler s, int ranks, const Workload& w, const Latencies& lat, std::uint64_t seed, Defect defect) {
+  const bool flat = s == Scheduler::kRma || s == Scheduler::kRequest || s == Scheduler::kCentral;
+  if (flat && w.threads > 1) {  // one rank per worker (MPI everywhere): ranks x threads ranks of one thread
+    Workload one = w;
+    one.threads = 1;
+    Result r = Model(s, ranks * w.threads, one, lat, seed, defect).run();
+    r.ranks = ranks;
+    r.threads = w.threads;
+    return r;
+  }
   return Model(s, ranks, w, lat, seed, defect).run();
+}
+
+std::pair<const char*, double> LossAccount::bottleneck() const {
+  std::pair<const char*, double> worst{"none", 0.0};
+  for (const auto& [name, ns] : {std::pair<const char*, double>{"claims", claims},
+                                 {"local steals", local_steals},
+                                 {"remote steals", remote_steals},
+                                 {"idle (back-off)", idle},
+                                 {"tail (finished early)", tail},
+                                 {"frame-end barrier", barrier}}) {
+    if (ns > worst.second) worst = {name, ns};
+  }
+  const double all = total();
+  return {worst.first, all > 0 ? worst.second / all : 0.0};
 }
 
 }  // namespace frontsteal::mpi::sim

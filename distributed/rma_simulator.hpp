@@ -17,7 +17,19 @@
 //               travels half a ping-pong, waits for the victim's next poll (an idle victim answers at once), the reply
 //               (second half of the list, and A1 on rank 0 paid by the victim) travels the other half.
 //   central     a fetch-and-op on rank 0 per grain of N/(100P) items.
-//   static      round robin, no communication; static-space: contiguous blocks of ids (regions of space).
+//   static      round robin, no communication; static-space: contiguous blocks of ids (regions of space). With
+//               threads > 1 a rank's threads share its items perfectly (no cost, no granularity): generous.
+//   flat        rma, request and central at ranks x threads run one rank per worker (MPI everywhere).
+//   hier        ranks x `threads` workers (hierarchical_rank.hpp): a worker runs its local list (`local_claim` per
+//               item), refills it with a chunk of the rank list under the rank's mutex (`rank_lock` + `claim` per
+//               item; chunk = `chunk_us` of the rank's last-frame mean item time, at most 256 items), then steals
+//               half of a sibling's local list (`local_steal`); worker 0, once every sibling is dry, leaves the
+//               global count (A2) and runs the rma thief above against other ranks' lists, installing the share
+//               into its rank list; the others back off. Only worker 0 calls into MPI (its progress calls, and the
+//               target of other ranks' operations is attentive only when worker 0 is). A worker backing off
+//               is woken when worker 0 installs a remote share and when the frame ends.
+//   hier-seeded hier whose next lists are contiguous blocks of equal last-frame cost (cost_seeded_lists.hpp;
+//               the model knows the last frame's costs exactly, frontsteal-mpi measures them).
 //   termination A3 (a fetch-op read of rank 0's count) before every round of steal attempts; backoff as the
 //               real idle loop (yield x3, then 1, 2, 4 ... 256 us).
 //   contention  every atomic (fetch-op, CAS) on a rank's words occupies that rank for `atomic_service`
@@ -27,6 +39,10 @@
 //               `progress_every` after the previous call, owner_progress.hpp); an idle rank is inside MPI
 //               calls and serves at once.
 //   frame end   a barrier: 2 log2(P) one-way messages.
+// LOSS ACCOUNT (hier): every worker's time is split into work (item costs), claims (per-item claims, progress
+// calls, rank-list refills under the mutex), local steals, remote steals (worker 0's one-sided operations,
+// termination reads included), idle (back-off), the tail (finished before the frame's slowest worker) and the
+// frame-end barrier; the largest part that is not work is the model's bottleneck.
 // NOT MODELLED: network bandwidth and topology (every pair is the calibrated pair), the OS scheduler (one
 // rank per core), cache effects of stolen items, a rank's own contention between its thief and owner roles.
 //
@@ -37,6 +53,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "distributed/synthetic_cost.hpp"
@@ -56,13 +73,18 @@ struct Latencies {
   double atomic_service = 0;  // time one atomic holds its home rank (see contention above)
   bool needs_target_progress = false;
   double progress_every = 50000;  // with needs_target_progress: the owner's call/poll interval (auto: 50 us)
+  // Inside a rank (hier), over std atomics on one node. ASSUMED, not calibrated: frontsteal-mpi --calibrate
+  // measures one-sided operations only; frontsteal-mpi-simulate --local-steal-ns sets the one that matters.
+  double local_claim = 20;    // core's owner claim
+  double local_steal = 1000;  // a sibling steal, the thief's whole protocol (lock, reads, publish, re-read)
+  double rank_lock = 100;     // hier's rank mutex taken and released, uncontended
 };
 
 // Reads frontsteal-mpi --calibrate --json output (contents "calibration"); throws naming the file and the
 // operation it lacks. atomic_service = max(fetch_op - get, 50 ns): what an atomic costs beyond a plain get.
 Latencies latencies_from_calibration(const std::string& path);
 
-enum class Scheduler : std::uint8_t { kRma, kRequest, kCentral, kStatic, kStaticSpace };
+enum class Scheduler : std::uint8_t { kRma, kRequest, kCentral, kStatic, kStaticSpace, kHier, kHierSeeded };
 const char* to_string(Scheduler s) noexcept;
 
 enum class Defect : std::uint8_t { kNone, kSkipReread, kEmptyShare };
@@ -73,16 +95,32 @@ struct Workload {
   double light_ns = 2000;
   std::uint32_t skew = 20;
   int frames = 5;
+  int threads = 1;       // hier: workers per rank (the other schedulers: one per rank)
+  double chunk_us = 50;  // hier: a refill is about this much work (frontsteal-mpi --chunk-us)
+};
+
+// Where the workers' time went (hier; ns summed over every worker and frame): see LOSS ACCOUNT above.
+struct LossAccount {
+  double work = 0, claims = 0, local_steals = 0, remote_steals = 0, idle = 0, tail = 0, barrier = 0;
+  double total() const { return work + claims + local_steals + remote_steals + idle + tail + barrier; }
+  // The largest part that is not work ("claims", "local steals", ...), and its share of the total.
+  std::pair<const char*, double> bottleneck() const;
 };
 
 struct Result {
   Scheduler scheduler = Scheduler::kStatic;
   int ranks = 0;
+  int threads = 1;        // workers per rank
   double time_ns = 0;     // all frames
   double work_ns = 0;     // sum of item costs, all frames
-  double efficiency = 0;  // work / (ranks x time)
-  std::uint64_t steals = 0, steal_attempts = 0, remote_operations = 0;
-  double mean_steal_ns = 0;
+  double efficiency = 0;  // work / (ranks x threads x time)
+  // The same over the frames after the first: lists carried over (§4.2.1), the steady state a frame loop runs in;
+  // the first frame starts from contiguous blocks. 0 with one frame.
+  double efficiency_carried = 0;
+  std::vector<double> frame_ns;  // each frame's time, its barrier included
+  std::uint64_t steals = 0, steal_attempts = 0, remote_operations = 0, local_steals = 0;
+  double mean_steal_ns = 0;   // remote steals
+  LossAccount loss;           // hier only
   bool exactly_once = true;   // the audit
   std::string audit_failure;  // the first failure, when not
 };

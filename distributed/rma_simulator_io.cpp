@@ -31,6 +31,8 @@ const char* to_string(Scheduler s) noexcept {
     case Scheduler::kCentral: return "central";
     case Scheduler::kStatic: return "static";
     case Scheduler::kStaticSpace: return "static-space";
+    case Scheduler::kHier: return "hier";
+    case Scheduler::kHierSeeded: return "hier-seeded";
   }
   return "?";
 }
@@ -67,7 +69,10 @@ report::Json latencies_json(const Latencies& l) {
           {"owner_progress_call_ns", l.progress_call},
           {"atomic_service_ns", l.atomic_service},
           {"needs_target_progress", l.needs_target_progress},
-          {"progress_every_ns", l.progress_every}};
+          {"progress_every_ns", l.progress_every},
+          {"local_claim_ns_assumed", l.local_claim},
+          {"local_steal_ns_assumed", l.local_steal},
+          {"rank_lock_ns_assumed", l.rank_lock}};
 }
 
 void write_efficiency_plot(const std::string& dir_name, const report::Json& rows, const std::string& subtitle) {
@@ -75,7 +80,9 @@ void write_efficiency_plot(const std::string& dir_name, const report::Json& rows
   std::map<std::string, std::vector<std::pair<int, double>>> lines;  // "tcp rma" -> (ranks, efficiency)
   std::vector<std::string> order;
   for (const report::Json& row : rows) {
-    const std::string key = row.at("latencies").get<std::string>() + " " + row.at("scheduler").get<std::string>();
+    const int threads = row.value("threads", 1);
+    const std::string key = row.at("latencies").get<std::string>() + " " + row.at("scheduler").get<std::string>() +
+                            (threads > 1 ? " x" + std::to_string(threads) + " threads" : "");
     if (!lines.count(key)) order.push_back(key);
     lines[key].emplace_back(row.at("ranks").get<int>(), row.at("efficiency").get<double>());
   }

@@ -11,8 +11,8 @@ namespace frontsteal::mpi::sim {
 namespace {
 
 bool scheduler_named(const std::string& name, Scheduler& out) {
-  for (Scheduler s :
-       {Scheduler::kRma, Scheduler::kRequest, Scheduler::kCentral, Scheduler::kStatic, Scheduler::kStaticSpace}) {
+  for (Scheduler s : {Scheduler::kRma, Scheduler::kRequest, Scheduler::kCentral, Scheduler::kStatic,
+                      Scheduler::kStaticSpace, Scheduler::kHier}) {
     if (name == to_string(s)) {
       out = s;
       return true;
@@ -56,6 +56,8 @@ MeasuredRun read_measured_run(const std::string& path) {
     run.workload.skew = defaults.skew;
     run.assumed += "skew " + std::to_string(defaults.skew) + " (frontsteal-mpi's default) ";
   }
+  run.workload.threads = doc.value("threads", defaults.threads);
+  run.workload.chunk_us = doc.value("chunk_us", defaults.chunk_us);
   for (const report::Json& s : doc["schedulers"]) {
     run.schedulers.push_back({s.value("name", ""), s.value("median_frame_ms", 0.0)});
   }
@@ -70,13 +72,17 @@ std::vector<ValidationRow> validate(const MeasuredRun& run, const Latencies& lat
   if (measured_static <= 0) {
     throw std::runtime_error(run.path + ": no static (round robin) row to relate the other schedulers to");
   }
-  const Result reference = simulate(Scheduler::kStatic, run.ranks, run.workload, lat);
+  Workload flat = run.workload;  // every scheduler but hier ran one thread per rank
+  flat.threads = 1;
+  const Result reference = simulate(Scheduler::kStatic, run.ranks, flat, lat);
   const double simulated_static = reference.time_ns / run.workload.frames / 1e6;
   std::vector<ValidationRow> rows;
   for (const MeasuredScheduler& m : run.schedulers) {
     Scheduler s{};
     if (!scheduler_named(m.name, s) || m.median_frame_ms <= 0) continue;
-    const Result r = s == Scheduler::kStatic ? reference : simulate(s, run.ranks, run.workload, lat);
+    const Result r = s == Scheduler::kStatic ? reference
+                     : s == Scheduler::kHier ? simulate(s, run.ranks, run.workload, lat)
+                                             : simulate(s, run.ranks, flat, lat);
     ValidationRow row;
     row.scheduler = m.name;
     row.measured_ms = m.median_frame_ms;
