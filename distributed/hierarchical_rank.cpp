@@ -16,6 +16,10 @@ using Clock = std::chrono::steady_clock;
 
 // The largest chunk a worker takes from the rank list at once: a chunk is no longer stealable by other ranks.
 constexpr std::uint32_t kMaxChunk = 256;
+// Remote victims tried per round before the rank re-reads the global count (A3) and backs off: with hundreds of
+// ranks a round over all of them delays the frame's end by hundreds of one-sided operations (Saraswat et al.'s
+// w random steals before going quiet).
+constexpr std::size_t kVictimsPerRound = 8;
 
 }  // namespace
 
@@ -33,7 +37,7 @@ struct HierarchicalRank::Worker {
 };
 
 HierarchicalRank::HierarchicalRank(const Options& o, Workload& wl, int rank, WindowProtocol& window,
-                                   std::vector<int> remote_victims, double owner_progress_us, bool record_costs)
+                                   std::vector<int> remote_victims, double owner_progress_us)
     : o_(o),
       wl_(wl),
       rank_(rank),
@@ -45,7 +49,8 @@ HierarchicalRank::HierarchicalRank(const Options& o, Workload& wl, int rank, Win
       start_(static_cast<std::ptrdiff_t>(threads_)),
       end_(static_cast<std::ptrdiff_t>(threads_)),
       mean_item_ns_(std::max(1.0, static_cast<double>(o.work_ns))) {
-  if (record_costs) item_costs_.assign(wl.n, 0.0f);
+  item_costs_.assign(wl.n, 0.0f);
+  last_costs_.assign(wl.n, 0.0f);
   // A local list holds a chunk or a share of one: at most kMaxChunk ranges.
   for (std::uint32_t t = 0; t < threads_; ++t) slots_.push_back(std::make_unique<LocalSlot>(kMaxChunk));
   std::mt19937_64 rng(0x51ED270B27ull * static_cast<std::uint64_t>(rank + 1));
@@ -80,6 +85,14 @@ void HierarchicalRank::run_frame(int frame, std::vector<std::uint32_t>& counts, 
   counts_ = &counts;
   chunk_ = static_cast<std::uint32_t>(
       std::clamp(o_.chunk_us * 1000.0 / std::max(1.0, mean_item_ns_), 1.0, static_cast<double>(kMaxChunk)));
+  // The refills' price list: the costs the caller handed over (hier-seeded: every rank's), else this rank's own
+  // times of the last frame (the items of its list; 0 for the others, priced at the mean).
+  if (shared_costs_given_) {
+    shared_costs_given_ = false;
+  } else {
+    last_costs_.swap(item_costs_);
+  }
+  std::fill(item_costs_.begin(), item_costs_.end(), 0.0f);
   rank_active_ = true;  // E4 re-armed the window's count with every rank in it
   frame_over_.store(false, std::memory_order_relaxed);
   for (auto& w : workers_) {
@@ -137,17 +150,23 @@ void HierarchicalRank::work(std::uint32_t t) {
   }
 }
 
-// Claims up to chunk_ items from the rank list into w's local list. The join comes first (under the mutex), so
-// worker 0 never sees the local count at 0 while a chunk is on its way to a worker.
+// Claims items from the rank list into w's local list until they are worth --chunk-us by the last frame's times
+// (an item without one at the mean), at most kMaxChunk: by measured cost, not by count, so that a hot region's
+// heavy items stay in the rank list, stealable by other ranks. The join comes first (under the mutex), so worker
+// 0 never sees the local count at 0 while a chunk is on its way to a worker.
 bool HierarchicalRank::refill(Worker& w) {
   w.chunk.clear();
+  const double target_s = o_.chunk_us * 1e-6, mean_s = mean_item_ns_ * 1e-9;
   {
     std::lock_guard<std::mutex> lock(rank_mutex_);
     local_active_.join();  // A1 (local)
-    for (std::uint32_t k = 0; k < chunk_; ++k) {
+    double worth_s = 0;
+    for (std::uint32_t k = 0; k < kMaxChunk && worth_s < target_s; ++k) {
       const std::optional<ItemId> id = window_.try_claim();
       if (!id) break;
       append_merging(w.chunk, {*id, *id + 1});
+      const float known = last_costs_[*id];
+      worth_s += known > 0 ? known : mean_s;
     }
     if (w.chunk.empty()) {
       local_active_.leave();
@@ -182,7 +201,9 @@ bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
   }
   StealHooks hooks;
   hooks.force_overlap = o_.force_overlap;  // tests only: the interleaving a skipped re-read gets wrong, forced
-  for (int v : remote_victims_) {
+  const std::size_t round = std::min(kVictimsPerRound, remote_victims_.size());
+  for (std::size_t k = 0; k < round; ++k) {
+    const int v = remote_victims_[next_victim_++ % remote_victims_.size()];
     const auto t0 = Clock::now();
     remote_attempts_ += 1;
     if (window_.try_steal(v, hooks) != StealOutcome::kStolen) continue;  // A1 (global) inside, on success
@@ -214,6 +235,11 @@ void HierarchicalRank::idle_wait(std::uint32_t failed_rounds) {
   std::unique_lock<std::mutex> lock(wake_mutex_);
   const std::uint64_t seen = wake_generation_;
   wake_.wait_for(lock, pause, [&] { return wake_generation_ != seen; });
+}
+
+void HierarchicalRank::use_costs(const std::vector<float>& costs) {
+  last_costs_ = costs;
+  shared_costs_given_ = true;
 }
 
 void HierarchicalRank::wake_workers() {

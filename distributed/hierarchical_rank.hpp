@@ -12,14 +12,15 @@
 //
 // THE LOOP of every worker, until the frame is over:
 //   1. claim and run items from its own local list (wait-free);
-//   2. list empty: refill it with a chunk of the rank list — `chunk` items claimed one by one under
-//      rank_mutex_, sized by measured cost (items of ~--chunk-us of work, from the rank's mean item time of the
-//      last frame): the rank list stays stealable by other ranks except for the chunks taken from it;
+//   2. list empty: refill it with a chunk of the rank list — items claimed one by one under rank_mutex_ until
+//      they are worth ~--chunk-us by the last frame's item times (the rank's mean item time where an item has
+//      none): the rank list stays stealable by other ranks except for the chunks taken from it;
 //   3. the rank list empty: steal half of a sibling's local list (node-local victims before remote ones);
 //   4. nothing in the rank: worker 0, once every local worker is dry (the local active count is 0 under
 //      rank_mutex_), leaves the global active count (A2 for the rank) and steals from other ranks (one-sided
 //      operations; core takes half of the victim's unclaimed rank list), installing a share into the rank list
-//      for every worker to refill from; the others back off and retry steps 2-3.
+//      for every worker to refill from; the others back off and retry steps 2-3. A round tries at most 8
+//      victims (continuing where the last round stopped), then re-reads the global count.
 // TERMINATION. Locally: a worker counts in `local_active_` (core ActiveWorkers over std atomics) while it holds
 // work; it joins under rank_mutex_ before claiming a chunk, local thieves join on a victim's behalf (A1, inside
 // core). Globally: the window's active count (one per rank, I-T); worker 0 ends the frame when it is 0. When
@@ -28,8 +29,8 @@
 // EXACTLY ONCE: every item of the rank list is claimed once (core over the window, the rank's claims serialized),
 // lands in one local list, and is claimed there once (core over std atomics); the audit checks it (scheduler_run).
 // NEXT FRAME: the rank's next list is every item its workers ran this frame, stolen work included (§4.2.1 at the
-// rank level); local lists start empty. hier-seeded instead records every item's time (item_costs) for the
-// caller's cost-balanced blocks (cost_seeded_lists.hpp).
+// rank level); local lists start empty. Every item's time is recorded (item_costs): the next frame's refills are
+// priced with it, and hier-seeded's caller cuts cost-balanced blocks from every rank's (cost_seeded_lists.hpp).
 // WAKE-UPS: a worker other than 0 that found nothing backs off (idle_backoff.hpp) on a condition variable, and
 // worker 0 wakes them when it installs a remote share and when the frame ends: with a few ranks holding the
 // work, a rank's threads otherwise sleep through up to 256 us of a share or of the frame's end.
@@ -60,9 +61,8 @@ class HierarchicalRank {
   // `remote_victims`: the other ranks, in this rank's random order. Starts T - 1 threads that wait for frames.
   // `owner_progress_us`: worker 0 calls into MPI between items at most this often (owner_progress.hpp), so that
   // other ranks' one-sided operations on this rank's window complete where the transport needs it (TCP).
-  // `record_costs`: keep every item's time of the last frame in item_costs() (hier-seeded).
   HierarchicalRank(const Options& o, Workload& wl, int rank, WindowProtocol& window, std::vector<int> remote_victims,
-                   double owner_progress_us, bool record_costs = false);
+                   double owner_progress_us);
   ~HierarchicalRank();
   HierarchicalRank(const HierarchicalRank&) = delete;
   HierarchicalRank& operator=(const HierarchicalRank&) = delete;
@@ -75,8 +75,11 @@ class HierarchicalRank {
   // Remote steal latencies (us), for the medians.
   const std::vector<double>& steal_latencies_us() const { return steal_latencies_us_; }
   std::uint32_t chunk() const { return chunk_; }
-  // With record_costs: seconds per item id this rank ran (0 for the others); the caller resets it.
+  // Seconds per item id this rank ran in the last frame (0 for the others); until the next run_frame.
   std::vector<float>& item_costs() { return item_costs_; }
+  // hier-seeded: the next frame's refills are priced with these (every rank's times, reduced) instead of this
+  // rank's own.
+  void use_costs(const std::vector<float>& costs);
 
  private:
   using LocalSlot = ActivitySlot<StdBackend, Fenced>;
@@ -107,7 +110,10 @@ class HierarchicalRank {
   std::mutex wake_mutex_;
   std::condition_variable wake_;
   std::uint64_t wake_generation_ = 0;  // under wake_mutex_
-  std::vector<float> item_costs_;      // hier-seeded only, else empty
+  std::vector<float> item_costs_;      // this frame's item times (s), written by the worker that ran the item
+  std::vector<float> last_costs_;      // the last frame's: what refills are priced with
+  bool shared_costs_given_ = false;    // use_costs() was called for the next frame
+  std::size_t next_victim_ = 0;        // worker 0: where its next round of remote victims starts
   std::atomic<bool> stop_{false};
   std::barrier<> start_, end_;
   std::vector<std::thread> threads_started_;

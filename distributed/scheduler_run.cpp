@@ -63,8 +63,7 @@ SchedulerRun::SchedulerRun(std::string name, const Options& o, Workload& wl, int
                  runner_->protocol().backend_name().data(), runner_->protocol().policy_name().data());
   }
   if (name_ == "hier" || name_ == "hier-seeded") {
-    hier_ = std::make_unique<HierarchicalRank>(o, wl, rank, runner_->protocol(), runner_->victims(), owner_progress_us,
-                                               name_ == "hier-seeded");
+    hier_ = std::make_unique<HierarchicalRank>(o, wl, rank, runner_->protocol(), runner_->victims(), owner_progress_us);
   }
   noise_->start();
 }
@@ -126,6 +125,7 @@ bool SchedulerRun::run_pass(int frames, double planted_s, std::vector<double>& f
       MPI_Allreduce(mine.data(), all.data(), static_cast<int>(mine.size()), MPI_FLOAT, MPI_SUM, MPI_COMM_WORLD);
       list = cost_balanced_blocks(all, static_cast<WorkerId>(ranks_))[static_cast<std::size_t>(rank_)];
       std::fill(mine.begin(), mine.end(), 0.0f);
+      if (hier_) hier_->use_costs(all);  // the refills of the next frame priced with every rank's times
     }
     if (rank_ == 0 && planted_s > 0) {  // the planted slowdown: a busy wait by the clock, inside the timed region
       const auto until =
