@@ -23,8 +23,10 @@ constexpr double kInstallRetryNs = 500;  // a thief's install waits for its own 
 
 enum class Step : std::uint8_t { kOwner, kRoundStart, kTryVictim, kT1, kT2, kT3, kT4, kInstall, kAwaitReply, kDone };
 
-// hier: the largest chunk a worker takes from its rank list at once (hierarchical_rank.cpp's kMaxChunk).
+// hier: the largest chunk a worker takes from its rank list at once, and the remote victims of one round
+// (hierarchical_rank.cpp's kMaxChunk and kVictimsPerRound).
 constexpr std::uint32_t kMaxChunk = 256;
+constexpr std::size_t kVictimsPerRound = 8;
 
 // The idle loop's back-off after `failed` fruitless rounds (idle_backoff.hpp): yields, then 1, 2, 4 ... 256 us.
 double backoff_ns(std::uint32_t& failed) {
@@ -57,11 +59,12 @@ struct Rank {
   Step step = Step::kOwner;
   std::vector<int> victims;
   std::size_t victim_index = 0, next_request = 0;
+  std::size_t round_tried = 0;  // hier: victims tried in this round (at most kVictimsPerRound)
   std::uint32_t mid = 0, old_end = 0, front_read = 0, failed_rounds = 0;
   std::vector<std::pair<int, double>> pending;  // request: (thief, arrival)
   // hier: the rank list is [front, end) of `list` above; these are the rank's own.
   double mutex_free = 0;          // the rank mutex is free from this time on
-  std::uint32_t chunk = 1;        // items per refill this frame
+  double mean_ns = 0;             // the rank's mean item time of the last frame: the price of an unknown item
   std::int64_t local_active = 0;  // workers holding work (the local active count)
   bool rank_active = true;        // counts in the global active count
   bool frame_over = false;        // worker 0 read the global count at 0
@@ -324,7 +327,8 @@ class Model {
           }
           return;
         }
-        k.victim_index = 0;
+        if (!hier(s_)) k.victim_index = 0;  // hier: the next round continues where this one stopped
+        k.round_tried = 0;
         if (s_ == Scheduler::kRequest) return send_request(c, r);
         k.step = Step::kTryVictim;
         return at_time(c, r);
@@ -383,7 +387,11 @@ class Model {
     }
   }
 
-  int current(const Rank& k) const { return k.victims[k.victim_index]; }
+  int current(const Rank& k) const { return k.victims[k.victim_index % k.victims.size()]; }
+  bool round_over(const Rank& k) const {
+    return hier(s_) ? k.round_tried >= std::min(kVictimsPerRound, k.victims.size())
+                    : k.victim_index >= k.victims.size();
+  }
   Rank& victim(const Rank& k) { return at(current(k)); }
   double backoff(Rank& k) { return backoff_ns(k.failed_rounds); }
 
@@ -410,8 +418,7 @@ class Model {
       k.list = k.executed;
       std::sort(k.list.begin(), k.list.end());
     }
-    const double mean = k.items > 0 ? k.busy_ns / k.items : std::max(1.0, w_.light_ns);
-    k.chunk = static_cast<std::uint32_t>(std::clamp(w_.chunk_us * 1000 / mean, 1.0, double{kMaxChunk}));
+    k.mean_ns = k.items > 0 ? k.busy_ns / k.items : std::max(1.0, w_.light_ns);
     k.busy_ns = k.items = 0;
     k.mutex_free = 0;
     k.local_active = 0;
@@ -481,8 +488,7 @@ class Model {
     }
     // A chunk of the rank list, claimed item by item under the rank mutex.
     const double start = std::max(t, k.mutex_free);
-    const std::uint32_t n =
-        k.front < k.end ? std::min(k.chunk, k.end - k.front) : 0;  // a thief may set End below Front
+    const std::uint32_t n = chunk_worth(k, r);
     k.mutex_free = start + lat_.rank_lock + n * lat_.claim;
     x.parts[kClaims] += k.mutex_free - t;
     t = x.since = k.mutex_free;
@@ -518,8 +524,24 @@ class Model {
     }
     x.pending = kRemoteSteals;
     k.step = Step::kRoundStart;
-    k.victim_index = 0;
     stealing_step(t, r);
+  }
+
+  // The items of rank r's next refill: until they are worth chunk_us by the last frame's costs, where the rank
+  // knows them (hier: the items it ran; hier-seeded: every item, shared), else at the rank's mean; at most
+  // kMaxChunk. Frame 0 knows no costs: chunk_us / mean items.
+  std::uint32_t chunk_worth(const Rank& k, int r) const {
+    if (k.front >= k.end) return 0;  // a thief may set End below Front
+    const double target = w_.chunk_us * 1000;
+    double worth = 0;
+    std::uint32_t n = 0;
+    while (k.front + n < k.end && n < kMaxChunk && worth < target) {
+      const ItemId id = k.list[k.front + n];
+      const bool known = frame_ > 0 && (s_ == Scheduler::kHierSeeded || last_runner_[id] == r);
+      worth += known ? cost(frame_ - 1, id) : k.mean_ns;
+      ++n;
+    }
+    return n;
   }
 
   // x now holds x.list (a chunk or a stolen half) from t: it counts in the local active count (A1, local), and
@@ -550,12 +572,13 @@ class Model {
 
   void try_victim(double t, int r) {
     Rank& k = at(r);
-    if (k.victim_index >= k.victims.size()) {
+    if (round_over(k)) {
       k.step = Step::kRoundStart;
       if (hier(s_)) worker(r * threads_).pending = kIdle;
       return at_time(t + backoff(k), r);
     }
     ++attempts_;
+    ++k.round_tried;
     const double c = op(t, current(k), lat_.fetch_op, true);  // L1
     if (victim(k).locked) {
       ++k.victim_index;
@@ -611,6 +634,12 @@ class Model {
   }
 
   void audit(Result& res) {
+    if (s_ == Scheduler::kHier) {  // which rank ran each item: the costs it knows next frame
+      last_runner_.resize(w_.items);
+      for (int r = 0; r < p_; ++r) {
+        for (ItemId id : at(r).executed) last_runner_[id] = r;
+      }
+    }
     audit_.clear();
     for (const Rank& k : ranks_) audit_.count(k.executed);
     if (const auto failure = audit_.first_failure(); failure && res.exactly_once) {
@@ -626,7 +655,8 @@ class Model {
   Defect defect_;
   SyntheticCost cost_;
   int threads_;
-  std::vector<Worker> workers_;  // hier: rank r's worker t is workers_[r * threads_ + t]
+  std::vector<Worker> workers_;   // hier: rank r's worker t is workers_[r * threads_ + t]
+  std::vector<int> last_runner_;  // hier: the rank that ran each item in the last frame
   std::vector<Rank> ranks_;
   std::vector<std::vector<ItemId>> space_blocks_;  // static-space: each rank's contiguous block
   int frame_ = 0;
