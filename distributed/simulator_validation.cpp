@@ -12,7 +12,7 @@ namespace {
 
 bool scheduler_named(const std::string& name, Scheduler& out) {
   for (Scheduler s : {Scheduler::kRma, Scheduler::kRequest, Scheduler::kCentral, Scheduler::kStatic,
-                      Scheduler::kStaticSpace, Scheduler::kHier}) {
+                      Scheduler::kStaticSpace, Scheduler::kHier, Scheduler::kHierSeeded}) {
     if (name == to_string(s)) {
       out = s;
       return true;
@@ -80,9 +80,9 @@ std::vector<ValidationRow> validate(const MeasuredRun& run, const Latencies& lat
   for (const MeasuredScheduler& m : run.schedulers) {
     Scheduler s{};
     if (!scheduler_named(m.name, s) || m.median_frame_ms <= 0) continue;
-    const Result r = s == Scheduler::kStatic ? reference
-                     : s == Scheduler::kHier ? simulate(s, run.ranks, run.workload, lat)
-                                             : simulate(s, run.ranks, flat, lat);
+    const Result r = s == Scheduler::kStatic                                ? reference
+                     : s == Scheduler::kHier || s == Scheduler::kHierSeeded ? simulate(s, run.ranks, run.workload, lat)
+                                                                            : simulate(s, run.ranks, flat, lat);
     ValidationRow row;
     row.scheduler = m.name;
     row.measured_ms = m.median_frame_ms;
