@@ -132,5 +132,8 @@ report::Json latencies_json(const Latencies& lat);
 // --plots DIR: efficiency against ranks (log scale), one line per latency set and scheduler, labelled
 // SIMULATED; `rows` as in the --json document, `subtitle` the workload. Throws naming a file it cannot write.
 void write_efficiency_plot(const std::string& dir, const report::Json& rows, const std::string& subtitle);
+// --plots DIR with hier rows: where the workers' time went (the LOSS ACCOUNT), one stacked bar per latency set,
+// scheduler, ranks and threads; `losses` as the --json document's "hier_loss_shares". Throws as above.
+void write_loss_plot(const std::string& dir, const report::Json& losses, const std::string& subtitle);
 
 }  // namespace frontsteal::mpi::sim

@@ -1,6 +1,7 @@
 // rma_simulator_io.cpp — the simulator's inputs and outputs (rma_simulator.hpp): latencies from a calibration
 // file, the latencies as JSON for the SIMULATED output, and the efficiency plot.
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -95,7 +96,7 @@ void write_efficiency_plot(const std::string& dir_name, const report::Json& rows
   dir.write("simulated-efficiency.dat", dat.str());
   std::ostringstream gp;
   gp << "set output 'simulated-efficiency.png'\n"
-     << "set title \"SIMULATED efficiency = work / (ranks x time), not a measurement\\n"
+     << "set title \"SIMULATED efficiency = work / (ranks x threads x time), not a measurement\\n"
      << report::gnuplot_text(subtitle) << "\"\n"
      << "set logscale x 2\nset xlabel 'ranks'\nset ylabel 'efficiency'\nset yrange [0:1.05]\nset grid\n"
      << "set key outside right top\n"
@@ -103,6 +104,33 @@ void write_efficiency_plot(const std::string& dir_name, const report::Json& rows
      << "using 1:2 with linespoints lt 1+i%4 dt 1+i/4 pt 1+i title columnheader(1)\n";
   dir.write_gnuplot("simulated-efficiency.gp", {1100, 640, "font 'sans,10' noenhanced"}, gp.str());
   dir.plot("simulated-efficiency.gp");
+}
+
+void write_loss_plot(const std::string& dir_name, const report::Json& losses, const std::string& subtitle) {
+  const report::ResultsDir dir("frontsteal-mpi-simulate", dir_name);
+  static constexpr std::array<const char*, 7> kParts{"work", "claims", "local_steals", "remote_steals",
+                                                     "idle", "tail",   "barrier"};
+  std::ostringstream dat;
+  dat << "run";
+  for (const char* part : kParts) dat << ' ' << part;
+  dat << '\n';
+  for (const report::Json& l : losses) {
+    dat << '"' << l.at("latencies").get<std::string>() << ' ' << l.value("scheduler", std::string("hier")) << ' '
+        << l.at("ranks").get<int>() << 'x' << l.at("threads").get<int>() << '"';
+    for (const char* part : kParts) dat << ' ' << l.at(part).get<double>();
+    dat << '\n';
+  }
+  dir.write("hier-loss-account.dat", dat.str());
+  std::ostringstream gp;
+  gp << "set output 'hier-loss-account.png'\n"
+     << "set title \"SIMULATED: where the workers' time went (share of ranks x threads x time), not a measurement\\n"
+     << report::gnuplot_text(subtitle) << "\"\n"
+     << "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.8 border -1\n"
+     << "set boxwidth 0.7\nset yrange [0:1.05]\nset ylabel 'share of the workers time'\nset grid y\n"
+     << "set xtics rotate by -30\nset key outside right top\n"
+     << "plot for [i=2:" << kParts.size() + 1 << "] 'hier-loss-account.dat' using i:xtic(1) title columnheader(i)\n";
+  dir.write_gnuplot("hier-loss-account.gp", {1100, 640, "font 'sans,10' noenhanced"}, gp.str());
+  dir.plot("hier-loss-account.gp");
 }
 
 }  // namespace frontsteal::mpi::sim

@@ -81,11 +81,12 @@ int main(int argc, char** argv) {
   std::vector<int> ranks{2, 4, 16, 64, 256};
   sim::Workload w;
   std::string json, markdown, defect = "none";
-  report::CommandLine cli("frontsteal-mpi-simulate",
-                          "usage: frontsteal-mpi-simulate --calibration FILE[,FILE...] [options]\n\nSIMULATED: "
-                          "predicts each scheduler's efficiency (work / (ranks x time)) with a discrete-event model "
-                          "driven by measured latencies (frontsteal-mpi --calibrate --json).",
-                          "\nExit status: 0; 1 the model's exactly-once audit failed; 2 bad command line.");
+  report::CommandLine cli(
+      "frontsteal-mpi-simulate",
+      "usage: frontsteal-mpi-simulate --calibration FILE[,FILE...] [options]\n\nSIMULATED: "
+      "predicts each scheduler's efficiency (work / (ranks x threads x time)) with a discrete-event model "
+      "driven by measured latencies (frontsteal-mpi --calibrate --json).",
+      "\nExit status: 0; 1 the model's exactly-once audit failed; 2 bad command line.");
   cli.app()
       .add_option("--calibration", calibrations, "calibration JSON files (comma list)")
       ->delimiter(',')
@@ -209,6 +210,7 @@ int main(int argc, char** argv) {
               largest = std::string(part) + " " + report::fixed_text(100 * share, 1) + " %";
               const double all = r.loss.total();
               losses.push_back({{"latencies", label},
+                                {"scheduler", sim::to_string(s)},
                                 {"ranks", p},
                                 {"threads", threads_per_rank},
                                 {"work", r.loss.work / all},
@@ -238,10 +240,16 @@ int main(int argc, char** argv) {
     std::printf("%s%s%s", title.c_str(), latencies_text.c_str(), t.terminal().c_str());
     if (!json.empty()) report::write_atomically(json, doc.dump(2) + "\n");
     if (!plots.empty()) {
-      sim::write_efficiency_plot(plots, doc["rows"],
-                                 std::to_string(w.items) + " items/frame, " + shape_text +
-                                     "; tcp = calibration over TCP (owner calls into MPI every " +
-                                     report::fixed_text(progress_every_us, 0) + " us), shm = shared memory");
+      bool tcp = false;
+      for (const report::Json& l : doc["latencies"]) tcp = tcp || l.value("needs_target_progress", false);
+      sim::write_efficiency_plot(
+          plots, doc["rows"],
+          std::to_string(w.items) + " items/frame, " + shape_text + "; shm = shared memory" +
+              (tcp ? ", tcp = over TCP (owner calls into MPI every " + report::fixed_text(progress_every_us, 0) + " us)"
+                   : std::string()));
+      if (!losses.empty()) {
+        sim::write_loss_plot(plots, losses, std::to_string(w.items) + " items/frame, " + shape_text);
+      }
     }
     if (!markdown.empty()) {
       report::write_atomically(markdown, "# " + title + "\n```\n" + latencies_text + "```\n\n" + t.markdown());

@@ -122,6 +122,17 @@ TEST_CASE("the efficiency plot holds one line per latency set and scheduler", "[
   const std::string d((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(d == "\"shm rma\"\n2 0.99\n16 0.9\n\n\n\"tcp static\"\n2 1\n\n\n");
   CHECK(fs::file_size(dir / "simulated-efficiency.png") > 1000);
+  // hier's loss account: one stacked bar per run, its parts in the account's order.
+  const frontsteal::report::Json losses = frontsteal::report::Json::parse(
+      R"([{"latencies":"shm","scheduler":"hier","ranks":4,"threads":16,"work":0.9,"claims":0.05,
+           "local_steals":0.01,"remote_steals":0.01,"idle":0.02,"tail":0.005,"barrier":0.005}])");
+  sim::write_loss_plot(dir.string(), losses, "test workload");
+  std::ifstream loss_in(dir / "hier-loss-account.dat");
+  const std::string l((std::istreambuf_iterator<char>(loss_in)), std::istreambuf_iterator<char>());
+  CHECK(l ==
+        "run work claims local_steals remote_steals idle tail barrier\n"
+        "\"shm hier 4x16\" 0.9 0.05 0.01 0.01 0.02 0.005 0.005\n");
+  CHECK(fs::file_size(dir / "hier-loss-account.png") > 1000);
   fs::remove_all(dir);
 }
 
