@@ -46,13 +46,17 @@ void FrameRunner::execute(Frame& fr, ItemId id) {
   note_progress();
   if (first_item_done_) return;
   first_item_done_ = true;
-  if (fr.f == o_.die_frame && rank_ == o_.die_rank) {
-    std::fprintf(stderr, "%s: rank %d: --die: exiting abruptly in frame %d\n", kProgram.data(), rank_, fr.f);
+  first_item_faults(fr.f);
+}
+
+void FrameRunner::first_item_faults(int frame) {
+  if (frame == o_.die_frame && rank_ == o_.die_rank) {
+    std::fprintf(stderr, "%s: rank %d: --die: exiting abruptly in frame %d\n", kProgram.data(), rank_, frame);
     std::fflush(stderr);
     std::_Exit(3);
   }
-  if (fr.f == o_.stall_frame && rank_ == o_.stall_rank) stall(fr.f);
-  if (fr.f == o_.slow_frame && rank_ == o_.slow_rank) start_slowdown(fr.f);
+  if (frame == o_.stall_frame && rank_ == o_.stall_rank) stall(frame);
+  if (frame == o_.slow_frame && rank_ == o_.slow_rank) start_slowdown(frame);
 }
 
 // --slow: this rank keeps running its items, stopped by the OS 9 ms of every 10 for slow_ms (os_slowdown.hpp).

@@ -76,11 +76,17 @@ class FrameRunner {
   // rma-seeded: seconds each item of the current frame took on this rank (0 for items other ranks ran).
   std::vector<float>& item_costs() { return item_costs_; }
 
+  // The fault hooks, after this rank's first item of `frame` (--die, --stall, --slow): every runner of the rank
+  // calls them once per frame, hier's main thread included.
+  void first_item_faults(int frame);
+  // --slow under a window scheduler: says whether thieves lowered this rank's End since the slowdown began; the
+  // rank calls it when its own list has run out in the slowed frame.
+  void report_slowdown();
+
  private:
   void execute(Frame& fr, ItemId id);
   void stall(int frame);
   void start_slowdown(int frame);
-  void report_slowdown();
   void drain_rma(Frame& fr, RangeList& log);
   void drain_request(Frame& fr, RangeList list, RangeList& log);
   void serve_requests(RangeList* list, std::size_t* index = nullptr);

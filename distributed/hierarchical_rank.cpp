@@ -37,7 +37,7 @@ struct HierarchicalRank::Worker {
 };
 
 HierarchicalRank::HierarchicalRank(const Options& o, Workload& wl, int rank, WindowProtocol& window,
-                                   std::vector<int> remote_victims, double owner_progress_us)
+                                   std::vector<int> remote_victims, double owner_progress_us, HierFaultHooks faults)
     : o_(o),
       wl_(wl),
       rank_(rank),
@@ -51,6 +51,7 @@ HierarchicalRank::HierarchicalRank(const Options& o, Workload& wl, int rank, Win
       mean_item_ns_(std::max(1.0, static_cast<double>(o.work_ns))) {
   item_costs_.assign(wl.n, 0.0f);
   last_costs_.assign(wl.n, 0.0f);
+  faults_ = std::move(faults);
   // A local list holds a chunk or a share of one: at most kMaxChunk ranges.
   for (std::uint32_t t = 0; t < threads_; ++t) slots_.push_back(std::make_unique<LocalSlot>(kMaxChunk));
   std::mt19937_64 rng(0x51ED270B27ull * static_cast<std::uint64_t>(rank + 1));
@@ -94,6 +95,7 @@ void HierarchicalRank::run_frame(int frame, std::vector<std::uint32_t>& counts, 
   }
   std::fill(item_costs_.begin(), item_costs_.end(), 0.0f);
   rank_active_ = true;  // E4 re-armed the window's count with every rank in it
+  first_item_done_ = dry_reported_ = false;
   frame_over_.store(false, std::memory_order_relaxed);
   for (auto& w : workers_) {
     w->log.clear();
@@ -191,6 +193,8 @@ bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
     }
   }
   if (rank_active_) {
+    if (faults_.rank_dry && !dry_reported_) faults_.rank_dry();  // the first time this frame
+    dry_reported_ = true;
     window_.leave();  // A2 for the rank: its list exhausted, every local worker dry
     rank_active_ = false;
   }
@@ -261,6 +265,10 @@ void HierarchicalRank::execute(Worker& w, ItemId id) {
   w.busy_s += took;
   w.items += 1;
   if (w.index == 0 && progress_.maybe_call(Clock::now())) progress_calls_ += 1;  // only worker 0 calls MPI
+  if (w.index == 0 && !first_item_done_) {  // --die, --stall, --slow act on the main thread, after its first item
+    first_item_done_ = true;
+    if (faults_.first_item) faults_.first_item(frame_);
+  }
   append_merging(w.log, {id, id + 1});
   note_progress();
 }

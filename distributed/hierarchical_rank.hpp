@@ -40,6 +40,7 @@
 #include <barrier>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -56,13 +57,20 @@
 
 namespace frontsteal::mpi {
 
+// What the rank's fault hooks (frame_runner.hpp) are told, on worker 0: its first item of a frame, and the first
+// time in a frame that the rank ran dry (its list exhausted, every worker idle).
+struct HierFaultHooks {
+  std::function<void(int frame)> first_item;
+  std::function<void()> rank_dry;
+};
+
 class HierarchicalRank {
  public:
   // `remote_victims`: the other ranks, in this rank's random order. Starts T - 1 threads that wait for frames.
   // `owner_progress_us`: worker 0 calls into MPI between items at most this often (owner_progress.hpp), so that
   // other ranks' one-sided operations on this rank's window complete where the transport needs it (TCP).
   HierarchicalRank(const Options& o, Workload& wl, int rank, WindowProtocol& window, std::vector<int> remote_victims,
-                   double owner_progress_us);
+                   double owner_progress_us, HierFaultHooks faults = {});
   ~HierarchicalRank();
   HierarchicalRank(const HierarchicalRank&) = delete;
   HierarchicalRank& operator=(const HierarchicalRank&) = delete;
@@ -114,6 +122,9 @@ class HierarchicalRank {
   std::vector<float> last_costs_;      // the last frame's: what refills are priced with
   bool shared_costs_given_ = false;    // use_costs() was called for the next frame
   std::size_t next_victim_ = 0;        // worker 0: where its next round of remote victims starts
+  HierFaultHooks faults_;
+  bool first_item_done_ = false;  // worker 0, this frame
+  bool dry_reported_ = false;     // worker 0, this frame
   std::atomic<bool> stop_{false};
   std::barrier<> start_, end_;
   std::vector<std::thread> threads_started_;

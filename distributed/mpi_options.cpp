@@ -187,6 +187,11 @@ Options parse_options(int argc, char** argv) {
   const auto is_hier = [](const std::string& s) { return s == "hier" || s == "hier-seeded"; };
   const bool hier =
       std::any_of(o.schedulers.begin(), o.schedulers.end(), is_hier) || (o.rounds > 0 && is_hier(o.reference));
+  if (hier && !stall.empty()) {
+    cli.usage_error(
+        "--stall sleeps the rank's main thread until a thief lowers its End, and under hier its other threads keep "
+        "emptying the rank list: use --slow (the whole rank slowed by the OS) or --die with hier");
+  }
   if (hier && o.owner_fence == "win-sync") {
     cli.usage_error(
         "--owner-fence win-sync calls MPI on every claim, and under hier any worker thread claims: "

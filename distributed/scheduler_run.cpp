@@ -63,7 +63,11 @@ SchedulerRun::SchedulerRun(std::string name, const Options& o, Workload& wl, int
                  runner_->protocol().backend_name().data(), runner_->protocol().policy_name().data());
   }
   if (name_ == "hier" || name_ == "hier-seeded") {
-    hier_ = std::make_unique<HierarchicalRank>(o, wl, rank, runner_->protocol(), runner_->victims(), owner_progress_us);
+    FrameRunner* runner = runner_.get();
+    HierFaultHooks faults{[runner](int frame) { runner->first_item_faults(frame); },
+                          [runner] { runner->report_slowdown(); }};
+    hier_ = std::make_unique<HierarchicalRank>(o, wl, rank, runner_->protocol(), runner_->victims(), owner_progress_us,
+                                               std::move(faults));
   }
   noise_->start();
 }
