@@ -84,8 +84,6 @@ void HierarchicalRank::run_frame(int frame, std::vector<std::uint32_t>& counts, 
                                  RangeList& log) {
   frame_ = frame;
   counts_ = &counts;
-  chunk_ = static_cast<std::uint32_t>(
-      std::clamp(o_.chunk_us * 1000.0 / std::max(1.0, mean_item_ns_), 1.0, static_cast<double>(kMaxChunk)));
   // The refills' price list: the costs the caller handed over (hier-seeded: every rank's), else this rank's own
   // times of the last frame (the items of its list; 0 for the others, priced at the mean).
   if (shared_costs_given_) {

@@ -82,7 +82,6 @@ class HierarchicalRank {
   void add_stats(RankStats& s) const;
   // Remote steal latencies (us), for the medians.
   const std::vector<double>& steal_latencies_us() const { return steal_latencies_us_; }
-  std::uint32_t chunk() const { return chunk_; }
   // Seconds per item id this rank ran in the last frame (0 for the others); until the next run_frame.
   std::vector<float>& item_costs() { return item_costs_; }
   // hier-seeded: the next frame's refills are priced with these (every rank's times, reduced) instead of this
@@ -132,7 +131,6 @@ class HierarchicalRank {
   // The frame in progress (written by worker 0 before start_, read by every worker after it).
   int frame_ = 0;
   std::vector<std::uint32_t>* counts_ = nullptr;
-  std::uint32_t chunk_ = 1;
   double mean_item_ns_ = 0;
 
   // Worker 0's remote statistics.

@@ -12,6 +12,10 @@
 namespace frontsteal::mpi {
 namespace {
 
+// Every scheduler frontsteal-mpi runs, for --schedulers and --reference.
+const std::vector<std::string> kSchedulerNames{"rma",    "rma-seeded",   "request", "central",
+                                               "static", "static-space", "hier",    "hier-seeded"};
+
 constexpr const char* kDescription = R"(usage: mpirun -np P frontsteal-mpi [options]
 
 Runs the frame loop across MPI ranks under each scheduler (rma, request, central, static, static-space), audits every frame
@@ -107,8 +111,7 @@ Options parse_options(int argc, char** argv) {
           "--threads: stealing among a rank's threads, then across ranks),hier-seeded (hier, lists from the last "
           "frame's measured costs)")
       ->delimiter(',')
-      ->check(
-          CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space", "hier", "hier-seeded"}));
+      ->check(CLI::IsMember(kSchedulerNames));
   cli.option("--work-ns", o.work_ns, "synthetic: cost of a light item (cascade: of the mean item) in ~ns of busy work")
       ->check(CLI::Range(0u, 100000000u));
   cli.option("--skew", o.skew, "synthetic: the heavy fifth of the ids (a window that moves each frame) costs K x")
@@ -160,8 +163,7 @@ Options parse_options(int argc, char** argv) {
              "for --frames frames, in a random order; each is then compared with --reference (0: one pass each)")
       ->check(CLI::Range(0, 100000));
   cli.option("--reference", o.reference, "--rounds: the scheduler every other arm is compared with")
-      ->check(
-          CLI::IsMember({"rma", "rma-seeded", "request", "central", "static", "static-space", "hier", "hier-seeded"}));
+      ->check(CLI::IsMember(kSchedulerNames));
   cli.option("--margin-pct", o.margin_pct, "--rounds: equivalence margin of the verdicts, % of time")
       ->check(CLI::Range(0.1, 50.0));
   cli.option("--planted-pct", o.planted_pct,
@@ -173,8 +175,8 @@ Options parse_options(int argc, char** argv) {
              "hier: worker threads per rank (core's protocol among them; only the rank's main thread calls MPI)")
       ->check(CLI::Range(1, 256));
   cli.option("--chunk-us", o.chunk_us,
-             "hier: a worker takes from its rank's list a chunk of about this much work (us, from the rank's mean "
-             "item time of the last frame; at most 256 items)")
+             "hier: a worker takes from its rank's list a chunk of about this much work (us, by the last frame's "
+             "measured item times, the rank's mean item time where an item has none; at most 256 items)")
       ->check(CLI::Range(0.001, 1e6));
   cli.option("--ledger", o.ledger,
              "each rank records its frame and the items it ran in DIR/rank-R.ledger (a mapped file that outlives "
