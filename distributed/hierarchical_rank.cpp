@@ -37,7 +37,8 @@ struct HierarchicalRank::Worker {
 };
 
 HierarchicalRank::HierarchicalRank(const Options& o, Workload& wl, int rank, WindowProtocol& window,
-                                   std::vector<int> remote_victims, double owner_progress_us, HierFaultHooks faults)
+                                   std::vector<int> remote_victims, double owner_progress_us, Lifelines* lifelines,
+                                   HierFaultHooks faults)
     : o_(o),
       wl_(wl),
       rank_(rank),
@@ -49,6 +50,7 @@ HierarchicalRank::HierarchicalRank(const Options& o, Workload& wl, int rank, Win
       start_(static_cast<std::ptrdiff_t>(threads_)),
       end_(static_cast<std::ptrdiff_t>(threads_)),
       mean_item_ns_(std::max(1.0, static_cast<double>(o.work_ns))) {
+  lifelines_ = lifelines;
   item_costs_.assign(wl.n, 0.0f);
   last_costs_.assign(wl.n, 0.0f);
   faults_ = std::move(faults);
@@ -93,6 +95,7 @@ void HierarchicalRank::run_frame(int frame, std::vector<std::uint32_t>& counts, 
   }
   std::fill(item_costs_.begin(), item_costs_.end(), 0.0f);
   rank_active_ = true;  // E4 re-armed the window's count with every rank in it
+  waiting_ = false;
   first_item_done_ = dry_reported_ = false;
   frame_over_.store(false, std::memory_order_relaxed);
   for (auto& w : workers_) {
@@ -180,13 +183,14 @@ bool HierarchicalRank::refill(Worker& w) {
 
 // Worker 0, its rank list empty and nothing local for it. Returns false when the frame is over.
 bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
-  const auto idle_start = Clock::now();
+  idle_start_ = Clock::now();
+  const auto account = [&] { idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start_).count(); };
   {
     std::lock_guard<std::mutex> lock(rank_mutex_);
     if (!local_active_.all_idle()) {              // a sibling still holds work: it may yet be stolen locally
       if (progress_.enabled()) progress_.call();  // thieves' operations on this rank's window wait for it (TCP)
       idle_back_off(++failed_rounds);
-      idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start).count();
+      account();
       return true;
     }
   }
@@ -196,44 +200,86 @@ bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
     window_.leave();  // A2 for the rank: its list exhausted, every local worker dry
     rank_active_ = false;
   }
-  if (window_.all_idle()) {  // A3: no rank holds work
-    frame_over_.store(true, std::memory_order_release);
-    wake_workers();
-    return false;
+  if (waiting_) {
+    const bool more = lifeline_wait(failed_rounds);
+    account();
+    return more;
   }
-  StealHooks hooks;
-  hooks.force_overlap = o_.force_overlap;  // tests only: the interleaving a skipped re-read gets wrong, forced
+  if (window_.all_idle()) return end_frame(true);  // A3: no rank holds work
   const std::size_t round = std::min(kVictimsPerRound, remote_victims_.size());
   for (std::size_t k = 0; k < round; ++k) {
-    const int v = remote_victims_[next_victim_++ % remote_victims_.size()];
-    const auto t0 = Clock::now();
-    remote_attempts_ += 1;
-    if (window_.try_steal(v, hooks) != StealOutcome::kStolen) continue;  // A1 (global) inside, on success
-    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
-    remote_steals_ += 1;
-    steal_latency_s_ += s;
-    steal_latency_max_s_ = std::max(steal_latency_max_s_, s);
-    steal_latencies_us_.push_back(1e6 * s);
-    {
-      std::lock_guard<std::mutex> lock(rank_mutex_);
-      window_.install(window_.share());
+    if (try_remote(remote_victims_[next_victim_++ % remote_victims_.size()])) {
+      failed_rounds = 0;
+      account();
+      return true;
     }
-    wake_workers();
-    rank_active_ = true;
-    failed_rounds = 0;
-    idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start).count();
-    return true;
   }
-  idle_back_off(++failed_rounds);
+  if (lifelines_ != nullptr) {  // quiet from here: register, read the count once more (L1), wait
+    lifelines_->register_hungry();
+    if (window_.all_idle()) return end_frame(true);
+    waiting_ = true;
+    failed_rounds = 0;
+  } else {
+    idle_back_off(++failed_rounds);
+  }
   note_progress();
-  idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start).count();
+  account();
   return true;
 }
 
-// The back-off schedule of idle_backoff.hpp, cut short by wake_workers().
+// Worker 0, registered at its lifelines: the frame's end or an invitation, read from its own window words.
+bool HierarchicalRank::lifeline_wait(std::uint32_t& failed_rounds) {
+  if (lifelines_->notice_seen()) return end_frame(false);
+  if (const std::optional<int> donor = lifelines_->new_invitation()) {
+    waiting_ = false;
+    if (try_remote(*donor)) {
+      failed_rounds = 0;
+      return true;
+    }
+    lifelines_->register_hungry();  // the donor ran dry first: a new registration, then the count (L1)
+    if (window_.all_idle()) return end_frame(true);
+    waiting_ = true;
+    return true;
+  }
+  if (progress_.enabled()) progress_.call();  // other ranks' operations on this rank's window (TCP)
+  idle_back_off(++failed_rounds, true, kLifelineWaitCapUs);
+  note_progress();
+  return true;
+}
+
+bool HierarchicalRank::try_remote(int victim) {
+  StealHooks hooks;
+  hooks.force_overlap = o_.force_overlap;  // tests only: the interleaving a skipped re-read gets wrong, forced
+  const auto t0 = Clock::now();
+  remote_attempts_ += 1;
+  if (window_.try_steal(victim, hooks) != StealOutcome::kStolen) return false;  // A1 (global) inside, on success
+  const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+  remote_steals_ += 1;
+  steal_latency_s_ += s;
+  steal_latency_max_s_ = std::max(steal_latency_max_s_, s);
+  steal_latencies_us_.push_back(1e6 * s);
+  {
+    std::lock_guard<std::mutex> lock(rank_mutex_);
+    window_.install(window_.share());
+  }
+  wake_workers();
+  rank_active_ = true;
+  return true;
+}
+
+bool HierarchicalRank::end_frame(bool from_count) {
+  frame_over_.store(true, std::memory_order_release);
+  wake_workers();
+  if (lifelines_ != nullptr) lifelines_->tell_frame_over(from_count);
+  idle_s_ += std::chrono::duration<double>(Clock::now() - idle_start_).count();
+  return false;
+}
+
+// The back-off schedule of idle_backoff.hpp, capped at sibling_backoff_cap_us(), cut short by wake_workers().
 void HierarchicalRank::idle_wait(std::uint32_t failed_rounds) {
   if (failed_rounds < 4) return std::this_thread::yield();
-  const auto pause = std::chrono::microseconds(1u << std::min<std::uint32_t>(failed_rounds - 4, 8));
+  const auto pause = std::chrono::microseconds(std::min<std::uint32_t>(
+      1u << std::min<std::uint32_t>(failed_rounds - 4, 8), sibling_backoff_cap_us(o_.chunk_us)));
   std::unique_lock<std::mutex> lock(wake_mutex_);
   const std::uint64_t seen = wake_generation_;
   wake_.wait_for(lock, pause, [&] { return wake_generation_ != seen; });
@@ -263,6 +309,12 @@ void HierarchicalRank::execute(Worker& w, ItemId id) {
   w.busy_s += took;
   w.items += 1;
   if (w.index == 0 && progress_.maybe_call(Clock::now())) progress_calls_ += 1;  // only worker 0 calls MPI
+  if (w.index == 0 && lifelines_ != nullptr) {  // a donor: invite the ranks registered here, while it has spare
+    lifelines_->invite_hungry([this] {
+      std::lock_guard<std::mutex> lock(rank_mutex_);
+      return window_.unclaimed() >= 2;
+    });
+  }
   if (w.index == 0 && !first_item_done_) {  // --die, --stall, --slow act on the main thread, after its first item
     first_item_done_ = true;
     if (faults_.first_item) faults_.first_item(frame_);

@@ -19,11 +19,15 @@
 //   4. nothing in the rank: worker 0, once every local worker is dry (the local active count is 0 under
 //      rank_mutex_), leaves the global active count (A2 for the rank) and steals from other ranks (one-sided
 //      operations; core takes half of the victim's unclaimed rank list), installing a share into the rank list
-//      for every worker to refill from; the others back off and retry steps 2-3. A round tries at most 8
-//      victims (continuing where the last round stopped), then re-reads the global count.
+//      for every worker to refill from; the others back off (at most sibling_backoff_cap_us, idle_backoff.hpp)
+//      and retry steps 2-3. A round tries at most 8 victims (continuing where the last round stopped). Then,
+//      with --lifelines on (the default), the rank registers at its lifelines, reads the global count and waits
+//      on its own window words for an invitation or the frame's end (lifelines.hpp); with --lifelines off it
+//      backs off and re-reads the global count before its next round.
 // TERMINATION. Locally: a worker counts in `local_active_` (core ActiveWorkers over std atomics) while it holds
 // work; it joins under rank_mutex_ before claiming a chunk, local thieves join on a victim's behalf (A1, inside
-// core). Globally: the window's active count (one per rank, I-T); worker 0 ends the frame when it is 0. When
+// core). Globally: the window's active count (one per rank, I-T); worker 0 ends the frame when it reads 0, or,
+// with lifelines, when the notice reaches it (lifelines.hpp, L1-L2). When
 // worker 0 finds every local worker dry and the rank list empty, no work can appear in this rank except through
 // worker 0's own remote steal, so the frame's end is declared only when no rank holds work.
 // EXACTLY ONCE: every item of the rank list is claimed once (core over the window, the rank's claims serialized),
@@ -38,6 +42,7 @@
 
 #include <atomic>
 #include <barrier>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -49,6 +54,7 @@
 #include "core/id_range.hpp"
 #include "core/std_backend.hpp"
 #include "core/stealing_protocol.hpp"
+#include "distributed/lifelines.hpp"
 #include "distributed/mpi_options.hpp"
 #include "distributed/mpi_workload.hpp"
 #include "distributed/owner_progress.hpp"
@@ -69,8 +75,9 @@ class HierarchicalRank {
   // `remote_victims`: the other ranks, in this rank's random order. Starts T - 1 threads that wait for frames.
   // `owner_progress_us`: worker 0 calls into MPI between items at most this often (owner_progress.hpp), so that
   // other ranks' one-sided operations on this rank's window complete where the transport needs it (TCP).
+  // `lifelines`: the rank's lifelines (--lifelines on), or null.
   HierarchicalRank(const Options& o, Workload& wl, int rank, WindowProtocol& window, std::vector<int> remote_victims,
-                   double owner_progress_us, HierFaultHooks faults = {});
+                   double owner_progress_us, Lifelines* lifelines, HierFaultHooks faults = {});
   ~HierarchicalRank();
   HierarchicalRank(const HierarchicalRank&) = delete;
   HierarchicalRank& operator=(const HierarchicalRank&) = delete;
@@ -96,6 +103,9 @@ class HierarchicalRank {
   void work(std::uint32_t t);
   bool refill(Worker& w);
   bool remote_step(std::uint32_t& failed_rounds);
+  bool try_remote(int victim);                       // worker 0: one steal attempt; on success the share is installed
+  bool end_frame(bool from_count);                   // worker 0: the frame is over; returns false
+  bool lifeline_wait(std::uint32_t& failed_rounds);  // worker 0, registered: its own words only
   void execute(Worker& w, ItemId id);
   void idle_wait(std::uint32_t failed_rounds);  // a worker other than 0 backs off until woken
   void wake_workers();                          // worker 0: a share arrived or the frame is over
@@ -121,6 +131,8 @@ class HierarchicalRank {
   std::vector<float> last_costs_;      // the last frame's: what refills are priced with
   bool shared_costs_given_ = false;    // use_costs() was called for the next frame
   std::size_t next_victim_ = 0;        // worker 0: where its next round of remote victims starts
+  Lifelines* lifelines_ = nullptr;     // worker 0 only
+  bool waiting_ = false;               // worker 0: registered at its lifelines, waiting
   HierFaultHooks faults_;
   bool first_item_done_ = false;  // worker 0, this frame
   bool dry_reported_ = false;     // worker 0, this frame
@@ -136,6 +148,7 @@ class HierarchicalRank {
   // Worker 0's remote statistics.
   double progress_calls_ = 0;
   double remote_steals_ = 0, remote_attempts_ = 0, steal_latency_s_ = 0, steal_latency_max_s_ = 0, idle_s_ = 0;
+  std::chrono::steady_clock::time_point idle_start_{};  // worker 0: when the current remote step began
   std::vector<double> steal_latencies_us_;
 };
 

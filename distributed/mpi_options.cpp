@@ -136,8 +136,11 @@ Options parse_options(int argc, char** argv) {
   cli.option("--plant-defect", o.defect,
              "negative controls: none | skip-reread (rma thief skips T4/T5) | "
              "request-keeps-share (request owner sends a share and keeps it) | read-before-flush (one-sided results "
-             "read before MPI_Win_flush: the start-up window self-test must fail over osc/pt2pt)")
-      ->check(CLI::IsMember({"none", "skip-reread", "request-keeps-share", "read-before-flush"}));
+             "read before MPI_Win_flush: the start-up window self-test must fail over osc/pt2pt) | "
+             "lifeline-drops-notice (hier: a rank that learns the frame is over tells no other rank: the ranks "
+             "waiting on their lifelines never learn it, and the watchdog must end the job)")
+      ->check(
+          CLI::IsMember({"none", "skip-reread", "request-keeps-share", "read-before-flush", "lifeline-drops-notice"}));
   cli.flag("--force-overlap", o.force_overlap,
            "rma thieves wait, before T3, until the victim has claimed into the planned share");
   cli.option("--owner-fence", o.owner_fence,
@@ -178,6 +181,12 @@ Options parse_options(int argc, char** argv) {
              "hier: a worker takes from its rank's list a chunk of about this much work (us, by the last frame's "
              "measured item times, the rank's mean item time where an item has none; at most 256 items)")
       ->check(CLI::Range(0.001, 1e6));
+  std::string lifelines = "on";
+  cli.option("--lifelines", lifelines,
+             "hier: on = a rank that found nothing in a round of 8 random victims registers at its lifelines "
+             "((r + 2^k) mod P), reads the count and waits to be invited, and the frame's end travels a tree of "
+             "notices (lifelines.hpp); off = rounds of random victims with back-off, each after a read of the count")
+      ->check(CLI::IsMember({"on", "off"}));
   cli.option("--ledger", o.ledger,
              "each rank records its frame and the items it ran in DIR/rank-R.ledger (a mapped file that outlives "
              "the rank): after a job a dead rank ended, --post-mortem DIR says what was lost");
@@ -186,6 +195,7 @@ Options parse_options(int argc, char** argv) {
              "frame were lost, and exit (run without mpirun)");
   cli.quiet(o.quiet);
   cli.parse(argc, argv);
+  o.lifelines = lifelines == "on";
   const auto is_hier = [](const std::string& s) { return s == "hier" || s == "hier-seeded"; };
   const bool hier =
       std::any_of(o.schedulers.begin(), o.schedulers.end(), is_hier) || (o.rounds > 0 && is_hier(o.reference));
@@ -193,6 +203,11 @@ Options parse_options(int argc, char** argv) {
     cli.usage_error(
         "--stall sleeps the rank's main thread until a thief lowers its End, and under hier its other threads keep "
         "emptying the rank list: use --slow (the whole rank slowed by the OS) or --die with hier");
+  }
+  if (o.defect == "lifeline-drops-notice" && (!hier || !o.lifelines)) {
+    cli.usage_error(
+        "--plant-defect lifeline-drops-notice plants its defect in hier's lifelines: run it with "
+        "--schedulers hier (or hier-seeded) and --lifelines on");
   }
   if (hier && o.owner_fence == "win-sync") {
     cli.usage_error(

@@ -47,6 +47,7 @@ struct Options {
   // hier (hierarchical_rank.hpp): worker threads per rank, and the work (us) of one chunk taken from the rank list.
   int threads = 2;
   double chunk_us = 50;
+  bool lifelines = true;    // hier: dry ranks wait on a lifeline graph (lifelines.hpp) instead of polling
   std::string ledger;       // rank_ledger.hpp: each rank's flight recorder in this directory ("" = none)
   std::string post_mortem;  // read the ledgers in this directory, report, exit (no MPI)
 };

@@ -155,6 +155,7 @@ report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>&
   js["skew"] = run.skew;
   js["threads"] = run.threads;  // hier's workers per rank and refill size, for the same
   js["chunk_us"] = run.chunk_us;
+  js["lifelines"] = run.lifelines;
   return js;
 }
 

@@ -25,6 +25,7 @@ struct RunSummary {
   std::uint32_t skew = 0;     // synthetic:N's heavy fifth (--skew)
   int threads = 1;            // hier's workers per rank (--threads)
   double chunk_us = 0;        // hier's refill size (--chunk-us)
+  bool lifelines = false;     // hier's --lifelines
 };
 
 // The paired comparisons of a --rounds run (paired_rounds.hpp), as reported.

@@ -5,9 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
 #include <random>
 
 #include "distributed/cost_seeded_lists.hpp"
+#include "distributed/idle_backoff.hpp"
 #include "distributed/synthetic_cost.hpp"
 #include "papers/simulation/event_queue.hpp"
 #include "papers/simulation/exactly_once_audit.hpp"
@@ -20,6 +24,10 @@ bool hier(Scheduler s) { return s == Scheduler::kHier || s == Scheduler::kHierSe
 
 constexpr double kYieldNs = 1000;        // an idle loop's sched_yield on a loaded core (assumed)
 constexpr double kInstallRetryNs = 500;  // a thief's install waits for its own LockList (held by a thief)
+// lifelines: a waiting rank sees a word written into its window within this (assumed: it yields, then sleeps up to
+// idle_backoff.hpp's kLifelineWaitCapUs).
+constexpr double kLocalPollNs = 2000;
+constexpr double kNever = std::numeric_limits<double>::infinity();
 
 enum class Step : std::uint8_t { kOwner, kRoundStart, kTryVictim, kT1, kT2, kT3, kT4, kInstall, kAwaitReply, kDone };
 
@@ -69,6 +77,13 @@ struct Rank {
   bool rank_active = true;        // counts in the global active count
   bool frame_over = false;        // worker 0 read the global count at 0
   double busy_ns = 0, items = 0;  // last frame's item time, for the chunk
+  // LIFELINES: this rank's lifelines ((r + 2^k) mod P), the ranks registered here (hungry_in[k]: rank
+  // (r - 2^k) mod P), the rank that invited this one (its directed victim), and the frame-end notice's arrival.
+  std::vector<int> lifelines;
+  std::vector<char> hungry_in;
+  int directed = -1;
+  bool registered = false, waiting = false;
+  double notice_at = kNever;
 };
 
 class Model {
@@ -89,6 +104,8 @@ class Model {
       std::mt19937_64 rng(seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(r));
       k.victims = simulation::victim_order(r, p, rng);
       k.list = blocks[static_cast<std::size_t>(r)];
+      for (int step = 1; step < p && w.lifelines && hier(s); step *= 2) k.lifelines.push_back((r + step) % p);
+      k.hungry_in.assign(k.lifelines.size(), 0);
       for (int t = 0; t < threads_; ++t) {
         Worker x;
         x.siblings = simulation::victim_order(static_cast<std::uint32_t>(t), static_cast<std::uint32_t>(threads_), rng);
@@ -324,7 +341,15 @@ class Model {
             x.parts[kRemoteSteals] += c - t;
             finish(x, k, c);
             wake_siblings(c, r);  // the frame's end reaches the workers backing off at once
+            if (w_.lifelines && defect_ != Defect::kLifelineDropsNotice) tell_frame_over(c, r);
           }
+          return;
+        }
+        if (k.registered) {  // LIFELINES: wait for an invitation or the frame's end, on this rank's own words
+          k.waiting = true;
+          worker(r * threads_).parts[kRemoteSteals] += c - t;
+          worker(r * threads_).since = c;
+          worker(r * threads_).pending = kIdle;
           return;
         }
         if (!hier(s_)) k.victim_index = 0;  // hier: the next round continues where this one stopped
@@ -387,8 +412,12 @@ class Model {
     }
   }
 
-  int current(const Rank& k) const { return k.victims[k.victim_index % k.victims.size()]; }
+  int current(const Rank& k) const {
+    if (k.directed >= 0) return k.directed;
+    return k.victims[k.victim_index % k.victims.size()];
+  }
   bool round_over(const Rank& k) const {
+    if (k.directed >= 0) return k.round_tried >= 1;
     return hier(s_) ? k.round_tried >= std::min(kVictimsPerRound, k.victims.size())
                     : k.victim_index >= k.victims.size();
   }
@@ -398,15 +427,22 @@ class Model {
   // ---- hier: ranks x threads (hierarchical_rank.hpp) ----
   Worker& worker(int id) { return workers_[static_cast<std::size_t>(id)]; }
 
-  // hier-seeded: every rank's next list, a contiguous block of equal cost in the last frame.
+  // hier-seeded: every rank's next list, a contiguous block of equal predicted cost run heaviest first
+  // (cost_seeded_lists.hpp, frontsteal-mpi's code); the model knows the frames' costs exactly, frontsteal-mpi
+  // measures them. The prediction also prices the refills.
   void seed_lists() {
-    std::vector<float> last(w_.items);
+    std::vector<float> last(w_.items), before;
     for (ItemId id = 0; id < w_.items; ++id) last[id] = static_cast<float>(cost(frame_ - 1, id));
-    const std::vector<RangeList> blocks = cost_balanced_blocks(last, static_cast<WorkerId>(p_));
+    if (frame_ > 1) {
+      before.resize(w_.items);
+      for (ItemId id = 0; id < w_.items; ++id) before[id] = static_cast<float>(cost(frame_ - 2, id));
+    }
+    predicted_ = predicted_costs(last, before);
+    const std::vector<RangeList> blocks = cost_balanced_blocks(predicted_, static_cast<WorkerId>(p_));
     for (int r = 0; r < p_; ++r) {
       Rank& k = at(r);
       k.list.clear();
-      for (const IdRange& range : blocks[static_cast<std::size_t>(r)]) {
+      for (const IdRange& range : heavy_first(blocks[static_cast<std::size_t>(r)], predicted_)) {
         for (ItemId id = range.begin; id < range.end; ++id) k.list.push_back(id);
       }
     }
@@ -424,6 +460,10 @@ class Model {
     k.local_active = 0;
     k.rank_active = true;
     k.frame_over = false;
+    std::fill(k.hungry_in.begin(), k.hungry_in.end(), 0);
+    k.directed = -1;
+    k.registered = k.waiting = false;
+    k.notice_at = kNever;
     for (int t = 0; t < threads_; ++t) {
       Worker& x = worker(r * threads_ + t);
       x.list.clear();
@@ -449,8 +489,9 @@ class Model {
     x.parts[x.pending] += t - x.since;  // what the worker did since its last event
     x.since = t;
     if (x.done) return;
-    if (k.frame_over) return finish(x, k, t);
-    if (id % threads_ == 0 && k.step != Step::kOwner) {  // worker 0 inside a remote steal (the rma thief)
+    if (t >= k.notice_at) k.frame_over = true;
+    if (k.frame_over && x.front >= x.end) return finish(x, k, t);  // a worker still holding items runs them
+    if (id % threads_ == 0 && k.step != Step::kOwner) {            // worker 0 inside a remote steal (the rma thief)
       x.pending = kRemoteSteals;
       return stealing_step(t, r);
     }
@@ -468,6 +509,11 @@ class Model {
       k.executed.push_back(item);
       const bool due = main_thread && lat_.needs_target_progress && t >= k.next_call;
       if (due) k.next_call = t + lat_.progress_every;
+      if (main_thread && w_.lifelines && k.end >= k.front + 2) {  // a donor: its invitations' puts
+        const double invited = invite_hungry(t, r);
+        x.parts[kRemoteSteals] += invited - t;
+        t = invited;
+      }
       const double overhead = lat_.local_claim + (due ? lat_.progress_call : 0);
       const double c = cost(frame_, item);
       x.parts[kClaims] += overhead;
@@ -489,7 +535,8 @@ class Model {
     // A chunk of the rank list, claimed item by item under the rank mutex.
     const double start = std::max(t, k.mutex_free);
     const std::uint32_t n = chunk_worth(k, r);
-    k.mutex_free = start + lat_.rank_lock + n * lat_.claim;
+    // One owner claim per item (core's Owner claims one at a time); with batch_claims, one per chunk.
+    k.mutex_free = start + lat_.rank_lock + (w_.batch_claims ? std::min(n, 1u) : n) * lat_.claim;
     x.parts[kClaims] += k.mutex_free - t;
     t = x.since = k.mutex_free;
     if (n > 0) {
@@ -511,9 +558,10 @@ class Model {
       return hold_local(x, k, t, id);
     }
     // Nothing in the rank for this worker: worker 0 goes to other ranks once every sibling is dry.
+    if (k.frame_over) return finish(x, k, t);
     if (!main_thread || k.local_active > 0) {
       x.pending = kIdle;
-      return wake(t + backoff_ns(x.failed_rounds), id);
+      return wake(t + std::min(backoff_ns(x.failed_rounds), 1000.0 * sibling_backoff_cap_us(w_.chunk_us)), id);
     }
     if (k.rank_active) {  // A2 for the rank
       k.rank_active = false;
@@ -537,8 +585,11 @@ class Model {
     std::uint32_t n = 0;
     while (k.front + n < k.end && n < kMaxChunk && worth < target) {
       const ItemId id = k.list[k.front + n];
-      const bool known = frame_ > 0 && (s_ == Scheduler::kHierSeeded || last_runner_[id] == r);
-      worth += known ? cost(frame_ - 1, id) : k.mean_ns;
+      if (s_ == Scheduler::kHierSeeded && !predicted_.empty()) {
+        worth += predicted_[id];
+      } else {
+        worth += frame_ > 0 && last_runner_[id] == r ? cost(frame_ - 1, id) : k.mean_ns;
+      }
       ++n;
     }
     return n;
@@ -574,6 +625,7 @@ class Model {
     Rank& k = at(r);
     if (round_over(k)) {
       k.step = Step::kRoundStart;
+      if (w_.lifelines && hier(s_)) return at_time(register_hungry(t, r), r);
       if (hier(s_)) worker(r * threads_).pending = kIdle;
       return at_time(t + backoff(k), r);
     }
@@ -612,6 +664,7 @@ class Model {
     }
     k.list = k.share;
     k.share.clear();
+    k.directed = -1;
     k.front = 0;
     k.end = static_cast<std::uint32_t>(k.list.size());
     k.failed_rounds = 0;
@@ -633,7 +686,93 @@ class Model {
     }
   }
 
+  // ---- LIFELINES (hier) ----
+  // Rank r, dry after a round, registers at each of its lifelines (a put each, issued one after another); it then
+  // reads the global count (kRoundStart) and waits. Returns when its puts are complete.
+  double register_hungry(double t, int r) {
+    Rank& k = at(r);
+    k.directed = -1;
+    k.registered = true;
+    for (std::size_t i = 0; i < k.lifelines.size(); ++i) {
+      at(k.lifelines[i]).hungry_in[i] = 1;  // seen from its arrival (t + put / 2): optimistic by that
+      t = op(t, k.lifelines[i], lat_.put, false);
+    }
+    return t;
+  }
+  // Rank r's worker 0, at an item boundary with items to spare: invites every rank registered here (a put each),
+  // returning when its puts are complete. A rank no longer registered (it found work) ignores its invitation.
+  double invite_hungry(double t, int r) {
+    Rank& k = at(r);
+    for (std::size_t i = 0; i < k.hungry_in.size(); ++i) {
+      if (!k.hungry_in[i]) continue;
+      k.hungry_in[i] = 0;
+      const int h = (r - (1 << i) % p_ + p_) % p_;
+      const double arrives = t + lat_.put / 2;
+      t = op(t, h, lat_.put, false);
+      Rank& hungry = at(h);
+      if (!hungry.registered || hungry.frame_over) continue;  // it found work meanwhile
+      hungry.registered = false;
+      hungry.directed = r;  // a rank still on its way to waiting finds the invitation when it gets there
+      if (!hungry.waiting) continue;
+      hungry.waiting = false;
+      hungry.round_tried = 0;
+      hungry.step = Step::kTryVictim;
+      wake(arrives + kLocalPollNs, h * threads_);
+    }
+    return t;
+  }
+  // Rank `detector` read the count at 0 at t (lifelines.hpp, L2): it tells rank 0 (unless it is rank 0) and its
+  // children in the binomial tree rooted at rank 0 (rank i's children: i + 2^j for every 2^j > i), one put after
+  // another; every rank forwards to its own children when the notice reaches it.
+  void tell_frame_over(double t, int detector) {
+    std::vector<double> learned(static_cast<std::size_t>(p_), kNever);
+    using Arrival = std::pair<double, int>;
+    std::priority_queue<Arrival, std::vector<Arrival>, std::greater<>> pending;
+    learned[static_cast<std::size_t>(detector)] = t;
+    pending.push({t, detector});
+    while (!pending.empty()) {
+      const auto [when, u] = pending.top();
+      pending.pop();
+      if (when > learned[static_cast<std::size_t>(u)]) continue;
+      std::vector<int> to;
+      if (u == detector && u != 0) to.push_back(0);
+      int step = 1;
+      while (step <= u) step *= 2;
+      for (; u + step < p_; step *= 2) to.push_back(u + step);
+      double sent = when;
+      for (int v : to) {
+        const double arrives = sent + lat_.put / 2 + kLocalPollNs;
+        sent += lat_.put;
+        if (arrives < learned[static_cast<std::size_t>(v)]) {
+          learned[static_cast<std::size_t>(v)] = arrives;
+          pending.push({arrives, v});
+        }
+      }
+    }
+    for (int r = 0; r < p_; ++r) {
+      if (r == detector) continue;
+      Rank& k = at(r);
+      const double when = learned[static_cast<std::size_t>(r)];
+      if (k.frame_over || when >= k.notice_at) continue;
+      k.notice_at = when;
+      for (int t2 = 0; t2 < threads_; ++t2) {
+        Worker& y = worker(r * threads_ + t2);
+        const bool waiting = t2 == 0 ? k.waiting : y.pending == kIdle;
+        if (!y.done && waiting && (t2 == 0 || y.next_at > when)) wake(when, r * threads_ + t2);
+      }
+    }
+  }
+
   void audit(Result& res) {
+    if (hier(s_) && res.exactly_once) {  // termination: every worker learned the frame was over
+      for (std::size_t id = 0; id < workers_.size(); ++id) {
+        if (workers_[id].done) continue;
+        res.exactly_once = false;
+        res.audit_failure = "frame " + std::to_string(frame_) + ": rank " + std::to_string(id / threads_) +
+                            " (worker " + std::to_string(id % threads_) + ") never learned the frame was over";
+        return;
+      }
+    }
     if (s_ == Scheduler::kHier) {  // which rank ran each item: the costs it knows next frame
       last_runner_.resize(w_.items);
       for (int r = 0; r < p_; ++r) {
@@ -657,6 +796,7 @@ class Model {
   int threads_;
   std::vector<Worker> workers_;   // hier: rank r's worker t is workers_[r * threads_ + t]
   std::vector<int> last_runner_;  // hier: the rank that ran each item in the last frame
+  std::vector<float> predicted_;  // hier-seeded: this frame's predicted item costs (cost_seeded_lists.hpp)
   std::vector<Rank> ranks_;
   std::vector<std::vector<ItemId>> space_blocks_;  // static-space: each rank's contiguous block
   int frame_ = 0;
@@ -681,6 +821,51 @@ Result simulate(Scheduler s, int ranks, const Workload& w, const Latencies& lat,
     return r;
   }
   return Model(s, ranks, w, lat, seed, defect).run();
+}
+
+WorkloadLimits workload_limits(const std::vector<std::vector<double>>& frame_costs, int workers) {
+  WorkloadLimits limits;
+  limits.workers = workers;
+  double work = 0, bound_ns = 0, greedy_ns = 0, lpt_ns = 0;
+  // The makespan of `order` given to the first free worker (a min-heap of the workers' free times).
+  const auto list_schedule = [workers](const std::vector<double>& order) {
+    std::vector<double> free_at(static_cast<std::size_t>(workers), 0.0);
+    for (double c : order) {
+      std::pop_heap(free_at.begin(), free_at.end(), std::greater<>());
+      free_at.back() += c;
+      std::push_heap(free_at.begin(), free_at.end(), std::greater<>());
+    }
+    return *std::max_element(free_at.begin(), free_at.end());
+  };
+  for (const std::vector<double>& items : frame_costs) {
+    double frame_work = 0, largest = 0;
+    for (double c : items) {
+      frame_work += c;
+      largest = std::max(largest, c);
+    }
+    work += frame_work;
+    limits.max_item_ns = std::max(limits.max_item_ns, largest);
+    bound_ns += std::max(frame_work / workers, largest);
+    greedy_ns += list_schedule(items);
+    std::vector<double> longest_first = items;
+    std::sort(longest_first.begin(), longest_first.end(), std::greater<>());
+    lpt_ns += list_schedule(longest_first);
+  }
+  if (work > 0) {
+    limits.bound = work / (workers * bound_ns);
+    limits.greedy = work / (workers * greedy_ns);
+    limits.lpt = work / (workers * lpt_ns);
+  }
+  return limits;
+}
+
+WorkloadLimits workload_limits(const Workload& w, int workers) {
+  const SyntheticCost cost(w.shape, w.items, w.frames, w.skew);
+  std::vector<std::vector<double>> frames(static_cast<std::size_t>(w.frames), std::vector<double>(w.items));
+  for (int f = 0; f < w.frames; ++f) {
+    for (ItemId id = 0; id < w.items; ++id) frames[static_cast<std::size_t>(f)][id] = cost.units(f, id) * w.light_ns;
+  }
+  return workload_limits(frames, workers);
 }
 
 std::pair<const char*, double> LossAccount::bottleneck() const {

@@ -28,8 +28,10 @@
 //               into its rank list; the others back off. Only worker 0 calls into MPI (its progress calls, and the
 //               target of other ranks' operations is attentive only when worker 0 is). A worker backing off
 //               is woken when worker 0 installs a remote share and when the frame ends.
-//   hier-seeded hier whose next lists are contiguous blocks of equal last-frame cost (cost_seeded_lists.hpp;
-//               the model knows the last frame's costs exactly, frontsteal-mpi measures them).
+//               A worker other than 0 backs off at most sibling_backoff_cap_us(chunk_us) (idle_backoff.hpp).
+//   hier-seeded hier whose next lists are contiguous blocks of equal predicted cost, each run heaviest first
+//               (cost_seeded_lists.hpp: the last two frames' trend; the model knows the frames' costs exactly,
+//               frontsteal-mpi measures them); refills are priced with the prediction.
 //   termination A3 (a fetch-op read of rank 0's count) before every round of steal attempts; backoff as the
 //               real idle loop (yield x3, then 1, 2, 4 ... 256 us).
 //   contention  every atomic (fetch-op, CAS) on a rank's words occupies that rank for `atomic_service`
@@ -39,6 +41,20 @@
 //               `progress_every` after the previous call, owner_progress.hpp); an idle rank is inside MPI
 //               calls and serves at once.
 //   frame end   a barrier: 2 log2(P) one-way messages.
+//   LIFELINES   (hier, Workload::lifelines, lifelines.hpp; Saraswat et al., PPoPP'11, as invitations) rank r's
+//   lifelines are
+//               the ranks (r + 2^k) mod P, k < ceil(log2 P): a strongly connected graph of diameter <= log2 P.
+//               A dry rank tries one round of random victims; if it gets nothing it registers at each lifeline
+//               (a put each), reads the global count (A3) and waits on its own words, making no remote traffic.
+//               Worker 0 of a rank whose rank list holds >= 2 items finds its registered hungry ranks at its
+//               next item boundary, clears them and invites each (a put): the invited rank steals from it with
+//               core's protocol (one directed attempt; if it fails, it registers again). The count's zero is
+//               found by the rank whose A2 made it (every A2 is followed by its rank's A3), which tells rank 0
+//               and its children in the binomial tree of puts rooted at rank 0, each rank forwarding to its own
+//               (at most log2 P + 1 hops): no waiting rank polls rank 0. Without lifelines
+//               (--lifelines off): rounds of random victims with back-off, each after an A3.
+//   BATCH CLAIMS (hier, Workload::batch_claims) a refill holds the rank mutex for one owner claim, not one per
+//               item: what a batched owner claim in core (Front advanced by n in one O1-O4) would give. MODEL ONLY.
 // LOSS ACCOUNT (hier): every worker's time is split into work (item costs), claims (per-item claims, progress
 // calls, rank-list refills under the mutex), local steals, remote steals (worker 0's one-sided operations,
 // termination reads included), idle (back-off), the tail (finished before the frame's slowest worker) and the
@@ -48,7 +64,9 @@
 //
 // AUDIT. Every simulated frame checks that each item ran exactly once; Defect::kSkipReread (the thief keeps
 // [mid, end) without the T5 re-read) must be caught — the model's negative control. Defect::kEmptyShare (a
-// thief plans to take nothing: mid = end) is the control of the tests that say stealing happens and pays.
+// thief plans to take nothing: mid = end) is the control of the tests that say stealing happens and pays. Under
+// hier every worker must also have finished (learned the frame is over) when the events run out;
+// Defect::kLifelineDropsNotice (the rank that reads the count at 0 tells no other rank) must be caught there.
 #pragma once
 
 #include <cstdint>
@@ -87,7 +105,7 @@ Latencies latencies_from_calibration(const std::string& path);
 enum class Scheduler : std::uint8_t { kRma, kRequest, kCentral, kStatic, kStaticSpace, kHier, kHierSeeded };
 const char* to_string(Scheduler s) noexcept;
 
-enum class Defect : std::uint8_t { kNone, kSkipReread, kEmptyShare };
+enum class Defect : std::uint8_t { kNone, kSkipReread, kEmptyShare, kLifelineDropsNotice };
 
 struct Workload {
   CostShape shape = CostShape::kSkewed;
@@ -95,8 +113,11 @@ struct Workload {
   double light_ns = 2000;
   std::uint32_t skew = 20;
   int frames = 5;
-  int threads = 1;       // hier: workers per rank (the other schedulers: one per rank)
-  double chunk_us = 50;  // hier: a refill is about this much work (frontsteal-mpi --chunk-us)
+  int threads = 1;        // hier: workers per rank (the other schedulers: one per rank)
+  double chunk_us = 50;   // hier: a refill is about this much work (frontsteal-mpi --chunk-us)
+  bool lifelines = true;  // hier: LIFELINES below (frontsteal-mpi --lifelines, on by default)
+  // A MODEL-ONLY design option (not in frontsteal-mpi; every result that uses it says so):
+  bool batch_claims = false;  // hier: a refill claims its chunk from the rank list in one owner operation
 };
 
 // Where the workers' time went (hier; ns summed over every worker and frame): see LOSS ACCOUNT above.
@@ -121,12 +142,28 @@ struct Result {
   std::uint64_t steals = 0, steal_attempts = 0, remote_operations = 0, local_steals = 0;
   double mean_steal_ns = 0;   // remote steals
   LossAccount loss;           // hier only
-  bool exactly_once = true;   // the audit
+  bool exactly_once = true;   // the audit (every item once; hier: every worker learned the frame was over)
   std::string audit_failure;  // the first failure, when not
 };
 
 Result simulate(Scheduler s, int ranks, const Workload& w, const Latencies& lat, std::uint64_t seed = 1,
                 Defect defect = Defect::kNone);
+
+// What no scheduler of whole items can beat on this workload with `workers` workers and free communication,
+// summed over the frames (efficiency = work / (workers x time), as Result's):
+//   bound       each frame takes at least max(its work / workers, its largest item): the workload's own limit;
+//   greedy      every item, in id order, to the first free worker (a central queue of grain 1 at no cost: what
+//               a dynamic scheduler that knows no costs approaches);
+//   lpt         longest item first to the first free worker (Graham's LPT: clairvoyant, within 4/3 of optimal).
+// Not a model of any scheduler's overheads: a ceiling for all of them.
+struct WorkloadLimits {
+  int workers = 0;
+  double max_item_ns = 0;  // the largest item of any frame
+  double bound = 0, greedy = 0, lpt = 0;
+};
+WorkloadLimits workload_limits(const Workload& w, int workers);
+// The same for given item costs (ns), one vector per frame.
+WorkloadLimits workload_limits(const std::vector<std::vector<double>>& frame_costs, int workers);
 
 report::Json latencies_json(const Latencies& lat);
 // --plots DIR: efficiency against ranks (log scale), one line per latency set and scheduler, labelled

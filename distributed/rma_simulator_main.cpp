@@ -122,6 +122,22 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   cli.option("--chunk-us", w.chunk_us, "hier: a refill from the rank list is about this much work (frontsteal-mpi's)")
       ->check(CLI::Range(0.001, 1e6));
+  std::string lifelines = "on";
+  cli.option("--lifelines", lifelines,
+             "hier: on = a dry rank registers at its lifelines and waits to be invited, and the count's zero is "
+             "broadcast (rma_simulator.hpp's LIFELINES); off = rounds of random victims with back-off (as "
+             "frontsteal-mpi --lifelines)")
+      ->check(CLI::IsMember({"on", "off"}));
+  std::string batch_claims = "off";
+  cli.option("--batch-claims", batch_claims,
+             "hier: on = a refill claims its chunk in one owner operation (MODEL ONLY: core's owner claims one item "
+             "at a time)")
+      ->check(CLI::IsMember({"on", "off"}));
+  bool limits = false;
+  cli.flag("--limits", limits,
+           "also print what no scheduler of whole items beats at each ranks x threads: the bound max(work / "
+           "workers, largest item), greedy in id order and longest first, at no cost (about 10 s per 2,000,000 "
+           "items x 5 frames and worker count)");
   double local_steal_ns = -1;
   cli.option("--local-steal-ns", local_steal_ns,
              "hier: a sibling steal inside a rank, ns (ASSUMED; default 1000: frontsteal-mpi --calibrate does not "
@@ -155,6 +171,8 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  w.lifelines = lifelines == "on";
+  w.batch_claims = batch_claims == "on";
   w.shape = shape == "cascade" ? frontsteal::mpi::CostShape::kCascade : frontsteal::mpi::CostShape::kSkewed;
   const std::string shape_text =
       shape == "cascade" ? "cost cascade, mean " + report::fixed_text(w.light_ns, 0) + " ns"
@@ -176,8 +194,10 @@ int main(int argc, char** argv) {
                      {"exactly_once", "audit", false}});
     report::Json doc = report::document("frontsteal-mpi-simulate", 1, "simulated", FRONTSTEAL_GIT_COMMIT);
     doc["simulated"] = true;
-    doc["workload"] = {{"shape", shape}, {"items", w.items},   {"light_ns", w.light_ns},
-                       {"skew", w.skew}, {"frames", w.frames}, {"chunk_us", w.chunk_us}};
+    doc["workload"] = {{"shape", shape},           {"items", w.items},
+                       {"light_ns", w.light_ns},   {"skew", w.skew},
+                       {"frames", w.frames},       {"chunk_us", w.chunk_us},
+                       {"lifelines", w.lifelines}, {"batch_claims_model_only", w.batch_claims}};
     report::Json losses = report::Json::array();
     doc["latencies"] = report::Json::array();
     bool audit_ok = true;
@@ -231,13 +251,40 @@ int main(int argc, char** argv) {
       }
     }
     doc["rows"] = t.json();
-    doc["hier_loss_shares"] = losses;  // each part of the workers' time / the whole (rma_simulator.hpp)
+    doc["hier_loss_shares"] = losses;
+    std::string limits_text, limits_markdown;
+    if (limits) {  // the workload's own ceiling (rma_simulator.hpp, WorkloadLimits)
+      report::Table lt({{"workers", "ranks x threads", false},
+                        {"largest_item_us", "largest item us"},
+                        {"bound", "bound"},
+                        {"greedy", "greedy, id order"},
+                        {"lpt", "longest first"}});
+      std::vector<int> done;
+      for (int threads_per_rank : threads) {
+        for (int p : ranks) {
+          const int workers = p * threads_per_rank;
+          if (std::find(done.begin(), done.end(), workers) != done.end()) continue;
+          done.push_back(workers);
+          std::fprintf(stderr, "frontsteal-mpi-simulate: the workload's limits at %d workers ...\n", workers);
+          const sim::WorkloadLimits l = sim::workload_limits(w, workers);
+          lt.add_row({std::to_string(p) + " x " + std::to_string(threads_per_rank),
+                      report::Cell::fixed(l.max_item_ns / 1e3, 1), report::Cell::fixed(l.bound, 3),
+                      report::Cell::fixed(l.greedy, 3), report::Cell::fixed(l.lpt, 3)});
+        }
+      }
+      doc["limits"] = lt.json();
+      const std::string heading =
+          "What no scheduler of whole items beats (efficiency at no cost, SIMULATED from the costs):";
+      limits_text = "\n" + heading + "\n" + lt.terminal();
+      limits_markdown = "\n\n" + heading + "\n\n" + lt.markdown();
+    }  // each part of the workers' time / the whole (rma_simulator.hpp)
     std::string latencies_text;
     for (const report::Json& l : doc["latencies"]) latencies_text += "  " + l.dump() + "\n";
-    const std::string title = "SIMULATED (a discrete-event model, not a measurement): " + std::to_string(w.items) +
-                              " items/frame, " + shape_text + ", " + std::to_string(w.frames) +
-                              " frames\nlatencies used (ns):\n";
-    std::printf("%s%s%s", title.c_str(), latencies_text.c_str(), t.terminal().c_str());
+    const std::string title =
+        "SIMULATED (a discrete-event model, not a measurement): " + std::to_string(w.items) + " items/frame, " +
+        shape_text + ", " + std::to_string(w.frames) + " frames" + (w.lifelines ? ", lifelines" : ", no lifelines") +
+        (w.batch_claims ? " + MODEL-ONLY batch claims (not in frontsteal-mpi)" : "") + "\nlatencies used (ns):\n";
+    std::printf("%s%s%s%s", title.c_str(), latencies_text.c_str(), t.terminal().c_str(), limits_text.c_str());
     if (!json.empty()) report::write_atomically(json, doc.dump(2) + "\n");
     if (!plots.empty()) {
       bool tcp = false;
@@ -252,7 +299,8 @@ int main(int argc, char** argv) {
       }
     }
     if (!markdown.empty()) {
-      report::write_atomically(markdown, "# " + title + "\n```\n" + latencies_text + "```\n\n" + t.markdown());
+      report::write_atomically(markdown,
+                               "# " + title + "\n```\n" + latencies_text + "```\n\n" + t.markdown() + limits_markdown);
     }
     return audit_ok ? 0 : 1;
   } catch (const std::exception& e) {

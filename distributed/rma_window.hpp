@@ -14,7 +14,11 @@
 //   128  active              u32   rank 0's copy only: the termination count (A1-A3, E4), accumulates only
 //   136  next item           u64   rank 0's copy only: the central-counter baseline, accumulates only
 //   192  entry count         u32   owner writes locally at install, under its own LockList; thieves MPI_Get
-//   256  entries[capacity]   SegmentEntry {begin, end, flat_begin} u32 x 3 each, same ownership as the entry count
+//   256  lifeline notice     u64   the frame is over (lifelines.hpp): other ranks MPI_Accumulate (REPLACE); the
+//                                  rank reads it locally; reset by the rank (an accumulate on itself) between frames
+//   264  lifeline invite     u64   a donor's invitation, same ownership as the notice
+//   320  lifeline hungry[k]  u64   k < kMaxLifelines: rank (p - 2^k) mod P registered here, same ownership
+//   512  entries[capacity]   SegmentEntry {begin, end, flat_begin} u32 x 3 each, same ownership as the entry count
 //
 // MPI GUARANTEES RELIED ON (MPI 3.1 §11.4, §11.5, §11.7)
 //   G1  Passive target: MPI_Win_lock_all once at start, MPI_Win_unlock_all at the end; every RMA operation is
@@ -92,7 +96,13 @@ inline constexpr WinField<std::uint32_t> kLock{64};
 inline constexpr WinField<std::uint32_t> kActive{128};
 inline constexpr WinField<std::uint64_t> kNextItem{136};
 inline constexpr WinField<std::uint32_t> kEntryCount{192};
-inline constexpr MPI_Aint kEntries = 256;
+inline constexpr WinField<std::uint64_t> kLifelineNotice{256};
+inline constexpr WinField<std::uint64_t> kLifelineInvite{264};
+inline constexpr std::uint32_t kMaxLifelines = 24;  // ranks up to 2^24
+inline constexpr WinField<std::uint64_t> lifeline_hungry(std::uint32_t k) noexcept {
+  return {320 + 8 * static_cast<MPI_Aint>(k)};
+}
+inline constexpr MPI_Aint kEntries = 512;
 
 // A list entry lies in the window as core's SegmentEntry (activity_list.hpp): three u32, no padding.
 static_assert(sizeof(SegmentEntry) == 12 && std::is_trivially_copyable_v<SegmentEntry>);

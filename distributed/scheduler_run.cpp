@@ -66,8 +66,11 @@ SchedulerRun::SchedulerRun(std::string name, const Options& o, Workload& wl, int
     FrameRunner* runner = runner_.get();
     HierFaultHooks faults{[runner](int frame) { runner->first_item_faults(frame); },
                           [runner] { runner->report_slowdown(); }};
+    if (o.lifelines) {
+      lifelines_ = std::make_unique<Lifelines>(win, rank, ranks, o.defect == "lifeline-drops-notice");
+    }
     hier_ = std::make_unique<HierarchicalRank>(o, wl, rank, runner_->protocol(), runner_->victims(), owner_progress_us,
-                                               std::move(faults));
+                                               lifelines_.get(), std::move(faults));
   }
   noise_->start();
 }
@@ -80,6 +83,7 @@ bool SchedulerRun::run_pass(int frames, double planted_s, std::vector<double>& f
   RangeList list = block_allocation(wl_.n, static_cast<WorkerId>(ranks_))[static_cast<std::size_t>(rank_)];
   RangeList log;
   log.reserve(1024);
+  costs_before_.clear();  // a pass starts from blocks: its first prediction has one frame of times
   bool ok = true;
   for (int f = 0; f < frames && ok; ++f) {
     set_frame(f);
@@ -88,6 +92,7 @@ bool SchedulerRun::run_pass(int frames, double planted_s, std::vector<double>& f
     std::fill(counts_.begin(), counts_.end(), 0u);
     // Between frames (every rank is past the previous frame's done barrier): install, re-arm, reset.
     if (rma) runner.protocol().install(list);
+    if (lifelines_) lifelines_->reset_for_next_frame();  // no other rank writes them now (lifelines.hpp, L3)
     if (rank_ == 0) {
       runner.protocol().rearm(static_cast<std::uint32_t>(ranks_));  // E4
       win_.accumulate_replace(0, kNextItem, std::uint64_t{0});      // central counter
@@ -120,16 +125,19 @@ bool SchedulerRun::run_pass(int frames, double planted_s, std::vector<double>& f
     MPI_Barrier(MPI_COMM_WORLD);  // frame done (E3/E6)
     ledger_frame_done();
     note_progress();
-    // rma-seeded, hier-seeded: the next lists are contiguous blocks of equal measured cost
-    // (cost_seeded_lists.hpp), from every rank's item times of this frame; the all-reduce is part of this frame's
-    // time.
+    // rma-seeded, hier-seeded: the next lists are contiguous blocks of equal predicted cost, each run heaviest
+    // first (cost_seeded_lists.hpp), from every rank's item times of this frame and the one before; the
+    // all-reduce is part of this frame's time.
     if (name_ == "rma-seeded" || name_ == "hier-seeded") {
       std::vector<float>& mine = hier_ ? hier_->item_costs() : runner.item_costs();
       std::vector<float> all(mine.size());
       MPI_Allreduce(mine.data(), all.data(), static_cast<int>(mine.size()), MPI_FLOAT, MPI_SUM, MPI_COMM_WORLD);
-      list = cost_balanced_blocks(all, static_cast<WorkerId>(ranks_))[static_cast<std::size_t>(rank_)];
+      const std::vector<float> predicted = predicted_costs(all, costs_before_);
+      list = heavy_first(
+          cost_balanced_blocks(predicted, static_cast<WorkerId>(ranks_))[static_cast<std::size_t>(rank_)], predicted);
       std::fill(mine.begin(), mine.end(), 0.0f);
-      if (hier_) hier_->use_costs(all);  // the refills of the next frame priced with every rank's times
+      if (hier_) hier_->use_costs(predicted);  // the refills of the next frame priced with the prediction
+      costs_before_ = std::move(all);
     }
     if (rank_ == 0 && planted_s > 0) {  // the planted slowdown: a busy wait by the clock, inside the timed region
       const auto until =

@@ -23,6 +23,7 @@ namespace frontsteal::mpi {
 
 class FrameRunner;
 class HierarchicalRank;
+class Lifelines;
 class NoiseWindow;
 
 // One scheduler's runner kept across passes (the paired rounds of paired_rounds.hpp run each arm once per
@@ -51,8 +52,10 @@ class SchedulerRun {
   int rank_, ranks_;
   RmaWindow& win_;
   std::unique_ptr<FrameRunner> runner_;
+  std::unique_ptr<Lifelines> lifelines_;    // hier with --lifelines on
   std::unique_ptr<HierarchicalRank> hier_;  // hier only
   std::vector<std::uint32_t> counts_, total_;
+  std::vector<float> costs_before_;  // rma-seeded, hier-seeded: every rank's item times of the frame before
   std::uint64_t audited_frames_ = 0;
   double bytes_before_ = 0;
   std::unique_ptr<NoiseWindow> noise_;

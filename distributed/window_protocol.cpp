@@ -62,6 +62,10 @@ class CoreOverWindow final : public WindowProtocol {
 
   std::optional<ItemId> try_claim() override { return owner_.try_claim(); }
   void install(std::span<const IdRange> list) override { owner_.install(list); }
+  std::uint32_t unclaimed() override {
+    const std::uint32_t end = win_.local(kEnd).load(std::memory_order_acquire);
+    return end > owner_.claimed() ? end - owner_.claimed() : 0;
+  }
   StealOutcome try_steal(int victim, const StealHooks& hooks) override {
     const std::uint64_t polls_before = Backend::t4_polls();
     WindowObserver<Thief<Backend, Policy>> observe(thief_, win_, victim, hooks, t4_wait_s_);

@@ -40,6 +40,8 @@ class WindowProtocol {
   // The owner (this rank's slot).
   virtual std::optional<ItemId> try_claim() = 0;
   virtual void install(std::span<const IdRange> list) = 0;
+  // Items of this rank's list not yet claimed by its owner and not taken by a thief (End read locally, as O2).
+  virtual std::uint32_t unclaimed() = 0;
   // The thief: one attempt on `victim`'s slot; on kStolen, share() holds what to install.
   virtual StealOutcome try_steal(int victim, const StealHooks& hooks) = 0;
   virtual std::span<const IdRange> share() const = 0;

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "distributed/rma_simulator.hpp"
@@ -177,10 +178,13 @@ TEST_CASE("simulated hier runs each item once and accounts for every worker's ti
     sim::Latencies lat = shared_memory_like();
     lat.needs_target_progress = tcp;
     for (sim::Scheduler s : {sim::Scheduler::kHier, sim::Scheduler::kHierSeeded}) {
-      for (const auto& [ranks, threads] : {std::pair{2, 1}, {4, 4}, {16, 8}}) {
+      for (const auto& [ranks, threads, lifelines] :
+           {std::tuple{2, 1, true}, {4, 4, true}, {16, 8, true}, {4, 4, false}, {16, 8, false}}) {
         w.threads = threads;
+        w.lifelines = lifelines;
         const sim::Result r = sim::simulate(s, ranks, w, lat);
-        INFO(sim::to_string(s) << " " << ranks << " x " << threads << ", tcp " << tcp << ": " << r.audit_failure);
+        INFO(sim::to_string(s) << " " << ranks << " x " << threads << ", tcp " << tcp << ", lifelines " << lifelines
+                               << ": " << r.audit_failure);
         CHECK(r.exactly_once);
         CHECK(r.threads == threads);
         CHECK(r.loss.work == Approx(r.work_ns).epsilon(1e-9));
@@ -197,6 +201,7 @@ TEST_CASE("simulated hier runs each item once and accounts for every worker's ti
   sim::Workload tiny = small();
   tiny.light_ns = 10;
   tiny.threads = 2;
+  tiny.lifelines = false;  // rounds of random victims: steals enough, on this tiny workload, to hit the overlap
   CHECK(sim::simulate(sim::Scheduler::kHier, 4, tiny, slow, 1, sim::Defect::kNone).exactly_once);
   const sim::Result broken = sim::simulate(sim::Scheduler::kHier, 4, tiny, slow, 1, sim::Defect::kSkipReread);
   CHECK_FALSE(broken.exactly_once);
@@ -226,4 +231,69 @@ TEST_CASE("simulated hier recovers what static blocks of space lose, and needs i
   const auto [part, share] = hier.loss.bottleneck();
   CHECK(share > 0.0);
   CHECK(std::string(part) != "none");
+}
+
+// LIFELINES: a dry rank that found nothing in one round waits on its own words, so the remote attempts fall
+// (against rounds with back-off, same workload and seed), every item still runs once, and every worker learns
+// the frame is over. The model's termination audit counts only because it catches the planted defect: a rank
+// that learns the frame is over tells nobody, and the ranks waiting on their lifelines never finish.
+TEST_CASE("simulated lifelines: dry ranks wait quietly, and the frame's end reaches every rank", "[rma_simulator]") {
+  sim::Workload w = small();
+  w.shape = frontsteal::mpi::CostShape::kCascade;
+  w.items = 65536;
+  w.threads = 4;
+  w.lifelines = true;
+  const sim::Result on = sim::simulate(sim::Scheduler::kHierSeeded, 64, w, shared_memory_like());
+  w.lifelines = false;
+  const sim::Result off = sim::simulate(sim::Scheduler::kHierSeeded, 64, w, shared_memory_like());
+  INFO("remote attempts with lifelines " << on.steal_attempts << ", without " << off.steal_attempts << "; efficiency "
+                                         << on.efficiency << " / " << off.efficiency);
+  CHECK(on.exactly_once);
+  CHECK(off.exactly_once);
+  CHECK(on.steals > 0);
+  CHECK(on.steal_attempts * 2 < off.steal_attempts);
+  w.lifelines = true;
+  w.threads = 1;  // with siblings the waiting ranks' threads would poll forever: the model's event limit
+  const sim::Result dropped =
+      sim::simulate(sim::Scheduler::kHierSeeded, 64, w, shared_memory_like(), 1, sim::Defect::kLifelineDropsNotice);
+  INFO("dropped notice: " << dropped.audit_failure);
+  CHECK_FALSE(dropped.exactly_once);
+  CHECK_THAT(dropped.audit_failure, Catch::Contains("never learned the frame was over"));
+}
+
+// Batch claims (MODEL ONLY): a refill that holds the rank mutex for one claim instead of one per item spends
+// less of the workers' time on claims.
+TEST_CASE("simulated batch claims spend less time claiming", "[rma_simulator]") {
+  sim::Workload w = small();
+  w.shape = frontsteal::mpi::CostShape::kCascade;
+  w.items = 65536;
+  w.threads = 16;
+  const sim::Result one_by_one = sim::simulate(sim::Scheduler::kHierSeeded, 4, w, shared_memory_like());
+  w.batch_claims = true;
+  const sim::Result batched = sim::simulate(sim::Scheduler::kHierSeeded, 4, w, shared_memory_like());
+  INFO("claims " << one_by_one.loss.claims << " ns one by one, " << batched.loss.claims << " ns batched");
+  CHECK(batched.exactly_once);
+  CHECK(batched.loss.claims < one_by_one.loss.claims);
+}
+
+// The workload's own limits, against a schedule worked out by hand: items 3, 3, 2, 2, 2 on 2 workers. Greedy in
+// id order: 3 | 3, then 2 to the first, 2 to the second, 2 to the first: 7. Longest first is the same order: 7.
+// The bound: max(12 / 2, 3) = 6. And on the cascade at 256 x 16 workers no schedule beats the bound.
+TEST_CASE("the workload's limits: greedy, longest first and the bound, by hand", "[rma_simulator]") {
+  const sim::WorkloadLimits hand = sim::workload_limits({{3, 3, 2, 2, 2}}, 2);
+  CHECK(hand.max_item_ns == 3);
+  CHECK(hand.bound == Approx(1.0));
+  CHECK(hand.greedy == Approx(12.0 / 14.0));
+  CHECK(hand.lpt == Approx(12.0 / 14.0));
+  const sim::WorkloadLimits skewed = sim::workload_limits({{1, 1, 1, 1, 8}}, 4);  // one item outweighs a share
+  CHECK(skewed.bound == Approx(12.0 / (4 * 8.0)));
+  CHECK(skewed.greedy == Approx(12.0 / (4 * 9.0)));  // the heavy item last, after a light one
+  CHECK(skewed.lpt == Approx(skewed.bound));         // longest first reaches the bound here
+  sim::Workload w = small();
+  w.shape = frontsteal::mpi::CostShape::kCascade;
+  w.items = 65536;
+  const sim::WorkloadLimits cascade = sim::workload_limits(w, 64);
+  CHECK(cascade.greedy <= cascade.bound + 1e-12);
+  CHECK(cascade.lpt <= cascade.bound + 1e-12);
+  CHECK(cascade.greedy > 0.5);
 }
