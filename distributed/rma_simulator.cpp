@@ -350,6 +350,9 @@ class Model {
           worker(r * threads_).parts[kRemoteSteals] += c - t;
           worker(r * threads_).since = c;
           worker(r * threads_).pending = kIdle;
+          // The notice is a word that stays set: one that arrived before the rank began to wait is read at once
+          // (a thief that joined late, after the count's 0, can make this rank's A3 read 1: core's A1 note).
+          if (k.notice_at < kNever) wake(std::max(c, k.notice_at), r * threads_);
           return;
         }
         if (!hier(s_)) k.victim_index = 0;  // hier: the next round continues where this one stopped

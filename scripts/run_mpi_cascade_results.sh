@@ -3,10 +3,11 @@
 # cost concentrates in space: distributed/synthetic_cost.hpp): frontsteal-mpi at 2 and 4 ranks on one node with
 # every scheduler (np{2,4}_cascade20000_shm.*), the SIMULATED 4-256 ranks from the committed calibrations
 # (simulated_cascade_4_256.*, plot in plots_simulated_cascade/), SIMULATED ranks x 16 threads with hier's loss
-# account (simulated_hier_4_256x16.*, plot in plots_simulated_hier/; 2,000,000 items, and 8,000,000 at 256 ranks),
-# and the simulator validated against the 2-rank runs of both synthetic shapes (simulator_validation_np2.*; hier
-# with one thread per rank: 4 ranks or 2 x 2 threads share 2 vCPUs here, which the model does not model). Needs a
-# release build and a quiet machine. ~4 minutes.
+# account and the workload's own limits (simulated_hier_4_256x16.*, plot in plots_simulated_hier/; 2,000,000 items,
+# and 8,000,000 at 256 ranks; at 256 ranks also without lifelines, _lifelines_off, and with the MODEL-ONLY batch
+# claims, _batch_claims_model_only), and the simulator validated against the 2-rank runs of both synthetic shapes
+# (simulator_validation_np2.*; hier with one thread per rank: 4 ranks or 2 x 2 threads share 2 vCPUs here, which
+# the model does not model). Needs a release build and a quiet machine. ~7 minutes.
 #   scripts/run_mpi_cascade_results.sh [BUILD_DIR]      (from the repository root; default build/release)
 set -eu
 case "${1:-}" in -h|--help) sed -n '2,8p' "$0"; exit 0 ;; esac
@@ -32,13 +33,18 @@ echo "run_mpi_cascade_results: SIMULATED"
 $sim --shape cascade --ranks 4,16,64,256 --calibration $out/calibration_np2_shm.json,$out/calibration_np2_tcp.json \
   --json $out/simulated_cascade_4_256.json --markdown $out/simulated_cascade_4_256.md \
   --plots $out/plots_simulated_cascade > $out/simulated_cascade_4_256.txt
-echo "run_mpi_cascade_results: SIMULATED ranks x 16 threads (about 3 minutes)"
+echo "run_mpi_cascade_results: SIMULATED ranks x 16 threads (about 5 minutes)"
 h=$out/simulated_hier_4_256x16
-{ $sim --shape cascade --items 2000000 --ranks 4,16,64,256 --threads 16 \
+{ $sim --shape cascade --items 2000000 --ranks 4,16,64,256 --threads 16 --limits \
     --schedulers static,static-space,hier,hier-seeded --calibration $out/calibration_np2_shm.json \
     --json $h.json --markdown $h.md --plots $out/plots_simulated_hier
   $sim --shape cascade --items 8000000 --ranks 256 --threads 16 --schedulers static,static-space,hier,hier-seeded \
-    --calibration $out/calibration_np2_shm.json --json ${h}_8M.json --markdown ${h}_8M.md; } > $h.txt
+    --calibration $out/calibration_np2_shm.json --json ${h}_8M.json --markdown ${h}_8M.md
+  $sim --shape cascade --items 2000000 --ranks 256 --threads 16 --schedulers hier,hier-seeded --lifelines off \
+    --calibration $out/calibration_np2_shm.json --json ${h}_lifelines_off.json --markdown ${h}_lifelines_off.md
+  $sim --shape cascade --items 2000000 --ranks 64,256 --threads 16 --schedulers hier,hier-seeded --batch-claims on \
+    --calibration $out/calibration_np2_shm.json --json ${h}_batch_claims_model_only.json \
+    --markdown ${h}_batch_claims_model_only.md; } > $h.txt
 $sim --calibration $out/calibration_np2_shm.json --validate $out/np2_cascade20000_shm.json,$f.json \
   --json $out/simulator_validation_np2.json --markdown $out/simulator_validation_np2.md > $out/simulator_validation_np2.txt
 echo "run_mpi_cascade_results: done"
