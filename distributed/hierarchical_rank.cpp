@@ -20,6 +20,8 @@ constexpr std::uint32_t kMaxChunk = 256;
 // ranks a round over all of them delays the frame's end by hundreds of one-sided operations (Saraswat et al.'s
 // w random steals before going quiet).
 constexpr std::size_t kVictimsPerRound = 8;
+// A rank waiting on its lifelines probes random victims after this long, then at doubling intervals up to the last.
+constexpr std::chrono::microseconds kLifelineProbeFirst{1000}, kLifelineProbeLast{16000};
 
 }  // namespace
 
@@ -208,7 +210,7 @@ bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
   if (window_.all_idle()) return end_frame(true);  // A3: no rank holds work
   const std::size_t round = std::min(kVictimsPerRound, remote_victims_.size());
   for (std::size_t k = 0; k < round; ++k) {
-    if (try_remote(remote_victims_[next_victim_++ % remote_victims_.size()])) {
+    if (try_remote(remote_victims_[next_victim_++ % remote_victims_.size()]) == StealOutcome::kStolen) {
       failed_rounds = 0;
       account();
       return true;
@@ -217,7 +219,7 @@ bool HierarchicalRank::remote_step(std::uint32_t& failed_rounds) {
   if (lifelines_ != nullptr) {  // quiet from here: register, read the count once more (L1), wait
     lifelines_->register_hungry();
     if (window_.all_idle()) return end_frame(true);
-    waiting_ = true;
+    begin_waiting();
     failed_rounds = 0;
   } else {
     idle_back_off(++failed_rounds);
@@ -232,14 +234,35 @@ bool HierarchicalRank::lifeline_wait(std::uint32_t& failed_rounds) {
   if (lifelines_->notice_seen()) return end_frame(false);
   if (const std::optional<int> donor = lifelines_->new_invitation()) {
     waiting_ = false;
-    if (try_remote(*donor)) {
+    if (try_remote(*donor) == StealOutcome::kStolen) {
       failed_rounds = 0;
       return true;
     }
     lifelines_->register_hungry();  // the donor ran dry first: a new registration, then the count (L1)
     if (window_.all_idle()) return end_frame(true);
-    waiting_ = true;
+    begin_waiting();
     return true;
+  }
+  // A donor the OS has stopped cannot invite (a --slow rank runs 1 ms in 10), but its list can still be stolen
+  // one-sidedly: after kLifelineProbeFirst of waiting, and then at doubling intervals, one round of random
+  // victims. Rare enough not to be the polling lifelines replace. The count is read again only if the round
+  // left it (L1: a share that came out empty is an A1 and an A2); a round that found every list empty left
+  // nothing, and the frame's end still comes by the notice (so the notice's control still hangs without it).
+  if (Clock::now() >= next_probe_) {
+    probe_interval_ = std::min<Clock::duration>(2 * probe_interval_, kLifelineProbeLast);
+    next_probe_ = Clock::now() + probe_interval_;
+    bool left = false;
+    const std::size_t round = std::min(kVictimsPerRound, remote_victims_.size());
+    for (std::size_t k = 0; k < round; ++k) {
+      const StealOutcome out = try_remote(remote_victims_[next_victim_++ % remote_victims_.size()]);
+      if (out == StealOutcome::kStolen) {
+        waiting_ = false;
+        failed_rounds = 0;
+        return true;
+      }
+      left = left || out == StealOutcome::kSkippedAll;
+    }
+    if (left && window_.all_idle()) return end_frame(true);
   }
   if (progress_.enabled()) progress_.call();  // other ranks' operations on this rank's window (TCP)
   idle_back_off(++failed_rounds, true, kLifelineWaitCapUs);
@@ -247,12 +270,19 @@ bool HierarchicalRank::lifeline_wait(std::uint32_t& failed_rounds) {
   return true;
 }
 
-bool HierarchicalRank::try_remote(int victim) {
+void HierarchicalRank::begin_waiting() {
+  waiting_ = true;
+  probe_interval_ = kLifelineProbeFirst;
+  next_probe_ = Clock::now() + probe_interval_;
+}
+
+StealOutcome HierarchicalRank::try_remote(int victim) {
   StealHooks hooks;
   hooks.force_overlap = o_.force_overlap;  // tests only: the interleaving a skipped re-read gets wrong, forced
   const auto t0 = Clock::now();
   remote_attempts_ += 1;
-  if (window_.try_steal(victim, hooks) != StealOutcome::kStolen) return false;  // A1 (global) inside, on success
+  const StealOutcome out = window_.try_steal(victim, hooks);  // A1 (global) inside, on success
+  if (out != StealOutcome::kStolen) return out;
   const double s = std::chrono::duration<double>(Clock::now() - t0).count();
   remote_steals_ += 1;
   steal_latency_s_ += s;
@@ -264,7 +294,7 @@ bool HierarchicalRank::try_remote(int victim) {
   }
   wake_workers();
   rank_active_ = true;
-  return true;
+  return StealOutcome::kStolen;
 }
 
 bool HierarchicalRank::end_frame(bool from_count) {

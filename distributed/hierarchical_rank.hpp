@@ -22,8 +22,10 @@
 //      for every worker to refill from; the others back off (at most sibling_backoff_cap_us, idle_backoff.hpp)
 //      and retry steps 2-3. A round tries at most 8 victims (continuing where the last round stopped). Then,
 //      with --lifelines on (the default), the rank registers at its lifelines, reads the global count and waits
-//      on its own window words for an invitation or the frame's end (lifelines.hpp); with --lifelines off it
-//      backs off and re-reads the global count before its next round.
+//      on its own window words for an invitation or the frame's end (lifelines.hpp), trying one more round of
+//      random victims after 1 ms of waiting and then at doubling intervals up to 16 ms (a donor stopped by the
+//      OS cannot invite, but its list can be stolen one-sidedly); with --lifelines off it backs off and
+//      re-reads the global count before its next round.
 // TERMINATION. Locally: a worker counts in `local_active_` (core ActiveWorkers over std atomics) while it holds
 // work; it joins under rank_mutex_ before claiming a chunk, local thieves join on a victim's behalf (A1, inside
 // core). Globally: the window's active count (one per rank, I-T); worker 0 ends the frame when it reads 0, or,
@@ -103,9 +105,10 @@ class HierarchicalRank {
   void work(std::uint32_t t);
   bool refill(Worker& w);
   bool remote_step(std::uint32_t& failed_rounds);
-  bool try_remote(int victim);                       // worker 0: one steal attempt; on success the share is installed
+  StealOutcome try_remote(int victim);               // worker 0: one steal attempt; on kStolen the share is installed
   bool end_frame(bool from_count);                   // worker 0: the frame is over; returns false
-  bool lifeline_wait(std::uint32_t& failed_rounds);  // worker 0, registered: its own words only
+  bool lifeline_wait(std::uint32_t& failed_rounds);  // worker 0, registered: its own words, and rare probes
+  void begin_waiting();
   void execute(Worker& w, ItemId id);
   void idle_wait(std::uint32_t failed_rounds);  // a worker other than 0 backs off until woken
   void wake_workers();                          // worker 0: a share arrived or the frame is over
@@ -133,6 +136,8 @@ class HierarchicalRank {
   std::size_t next_victim_ = 0;        // worker 0: where its next round of remote victims starts
   Lifelines* lifelines_ = nullptr;     // worker 0 only
   bool waiting_ = false;               // worker 0: registered at its lifelines, waiting
+  std::chrono::steady_clock::time_point next_probe_{};  // worker 0, waiting: its next round of random victims
+  std::chrono::steady_clock::duration probe_interval_{};
   HierFaultHooks faults_;
   bool first_item_done_ = false;  // worker 0, this frame
   bool dry_reported_ = false;     // worker 0, this frame

@@ -60,7 +60,8 @@
 // termination reads included), idle (back-off), the tail (finished before the frame's slowest worker) and the
 // frame-end barrier; the largest part that is not work is the model's bottleneck.
 // NOT MODELLED: network bandwidth and topology (every pair is the calibrated pair), the OS scheduler (one
-// rank per core), cache effects of stolen items, a rank's own contention between its thief and owner roles.
+// rank per core), cache effects of stolen items, a rank's own contention between its thief and owner roles, and
+// a waiting rank's probe rounds (hierarchical_rank.hpp: after 1 ms of waiting, for a donor the OS stopped).
 //
 // AUDIT. Every simulated frame checks that each item ran exactly once; Defect::kSkipReread (the thief keeps
 // [mid, end) without the T5 re-read) must be caught — the model's negative control. Defect::kEmptyShare (a
