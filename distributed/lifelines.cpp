@@ -29,7 +29,6 @@ void Lifelines::reset_for_next_frame() {
 
 void Lifelines::register_hungry() {
   ++registration_;
-  registrations_ += 1;
   for (std::uint32_t k = 0; k < lifelines_.size(); ++k) {
     win_.accumulate_replace(lifelines_[k], lifeline_hungry(k), registration_);
   }
@@ -65,7 +64,6 @@ void Lifelines::invite_hungry(const std::function<bool()>& has_spare) {
     const int hungry =
         static_cast<int>((rank_ + ranks_ - static_cast<int>((1u << k) % static_cast<unsigned>(ranks_))) % ranks_);
     win_.accumulate_replace(hungry, kLifelineInvite, (static_cast<std::uint64_t>(rank_ + 1) << 32) | registered);
-    invitations_ += 1;
   }
 }
 

@@ -63,10 +63,6 @@ class Lifelines {
   // items in the rank list). Cheap when nobody is registered: a few local loads.
   void invite_hungry(const std::function<bool()>& has_spare);
 
-  const std::vector<int>& lifelines() const noexcept { return lifelines_; }
-  double registrations() const noexcept { return registrations_; }
-  double invitations_sent() const noexcept { return invitations_; }
-
  private:
   RmaWindow& win_;
   int rank_, ranks_;
@@ -75,7 +71,6 @@ class Lifelines {
   std::uint64_t registration_ = 0, last_invitation_ = 0;
   bool told_ = false;
   bool drops_notice_;
-  double registrations_ = 0, invitations_ = 0;
 };
 
 }  // namespace frontsteal::mpi
