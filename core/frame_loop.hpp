@@ -144,6 +144,14 @@ class StealingWorkers {
     workers_[w]->victims = std::move(victims);
     workers_[w]->victim_cursor = 0;
   }
+  // How many positions each owner claims per handshake: 1 (the default) is try_claim, the paper's loop; n > 1
+  // is Owner::try_claim_up_to(n), one O1-O4 for up to n items of one list entry. Between frames.
+  void set_claim_batch(std::uint32_t n) {
+    if (n == 0) throw std::invalid_argument("frontsteal: a claim batch of 0 items claims nothing");
+    for (const auto& w : workers_) A::write(w->handover, std::uint32_t{0});
+    claim_batch_ = n;
+  }
+  std::uint32_t claim_batch() const noexcept { return claim_batch_; }
   // Each worker's list for the next frame (between frames).
   std::vector<RangeList> allocation() const {
     std::vector<RangeList> out;
@@ -284,12 +292,11 @@ class StealingWorkers {
   void drain(Worker& me, WorkerId w, Process& process) {
     const auto start = Clock::now();
     if (me.span.first_claim_at == 0) me.span.first_claim_at = steady_ns(start);
-    while (const std::optional<ItemId> id = me.owner.try_claim()) {
-      ++me.stats.items_processed;
-      try {
-        process(*id, w);
-      } catch (...) {
-        if (!me.failure) me.failure = ItemFailure{*id, w, std::current_exception()};
+    if (claim_batch_ <= 1) {
+      while (const std::optional<ItemId> id = me.owner.try_claim()) run_item(me, w, *id, process);
+    } else {
+      while (const std::optional<IdRange> ids = me.owner.try_claim_up_to(claim_batch_)) {
+        for (ItemId id = ids->begin; id < ids->end; ++id) run_item(me, w, id, process);
       }
     }
     me.owner.log_claimed(me.log);
@@ -297,6 +304,16 @@ class StealingWorkers {
     me.stats.busy_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(end - start).count();
     ++me.stats.claims;
     me.span.last_done_at = steady_ns(end);
+  }
+
+  template <class Process>
+  void run_item(Worker& me, WorkerId w, ItemId id, Process& process) {
+    ++me.stats.items_processed;
+    try {
+      process(id, w);
+    } catch (...) {
+      if (!me.failure) me.failure = ItemFailure{id, w, std::current_exception()};
+    }
   }
 
   // The idle loop (paper §4.2.1 lines 61-68): victims in this worker's random order, each round starting one
@@ -380,6 +397,7 @@ class StealingWorkers {
 
   const WorkerId worker_count_;
   const ItemId item_count_;
+  std::uint32_t claim_batch_ = 1;  // positions per owner handshake (set_claim_batch)
   ActiveWorkers<Backend, Policy> active_;
   std::vector<std::unique_ptr<Slot>> slots_;
   std::vector<std::unique_ptr<Worker>> workers_;

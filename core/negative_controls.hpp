@@ -52,4 +52,14 @@ struct BrokenNeverRetracts : Fenced {
   static constexpr Defect defects() noexcept { return Defect::kOwnerNeverRetracts; }
 };
 
+// A batched claim (Owner::try_claim_up_to) takes up to n positions bounded by its list entry, forgetting the End
+// it read at O2. A claim that overlaps a steal is still corrected by the thief's re-read of Front; a claim that
+// begins after a steal has ended takes positions the thief already keeps, which then run twice. Invisible to
+// single claims (n = 1 never passes End), so only a scenario whose owner claims in batches can catch it
+// (models_check owner_batch_vs_thief).
+struct BrokenBatchIgnoresEnd : Fenced {
+  static constexpr std::string_view kName = "Broken:BatchIgnoresEnd";
+  static constexpr Defect defects() noexcept { return Defect::kBatchIgnoresEnd; }
+};
+
 }  // namespace frontsteal

@@ -56,6 +56,7 @@ enum class Defect : std::uint32_t {
   kTakeLastWithoutCas = 1u << 5,   // the owner keeps the last element without racing thieves for it (no K6)
   kShareLowerBound = 1u << 6,      // every copied entry starts at mid, not at max(mid, entry start)
   kOwnerNeverRetracts = 1u << 7,   // owner raises ListTransient (O1) but never lowers it: a hang, for watchdogs
+  kBatchIgnoresEnd = 1u << 8,      // a batched claim is bounded by its entry, not by the End it read at O2
 };
 
 struct DefectInfo {
@@ -64,7 +65,7 @@ struct DefectInfo {
   Protocol protocol;      // the primitive whose sites it breaks
 };
 
-inline constexpr std::array<DefectInfo, 8> kDefectTable{{
+inline constexpr std::array<DefectInfo, 9> kDefectTable{{
     {Defect::kSkipFrontReread, "skip_front_reread", Protocol::kStealing},
     {Defect::kOwnerSkipsTransient, "owner_skips_transient", Protocol::kStealing},
     {Defect::kReuseWithoutGrace, "reuse_without_grace", Protocol::kPublication},
@@ -73,6 +74,7 @@ inline constexpr std::array<DefectInfo, 8> kDefectTable{{
     {Defect::kTakeLastWithoutCas, "take_last_without_cas", Protocol::kChaseLev},
     {Defect::kShareLowerBound, "share_lower_bound", Protocol::kStealing},
     {Defect::kOwnerNeverRetracts, "owner_never_retracts", Protocol::kStealing},
+    {Defect::kBatchIgnoresEnd, "batch_ignores_end", Protocol::kStealing},
 }};
 
 constexpr Defect operator|(Defect a, Defect b) noexcept {

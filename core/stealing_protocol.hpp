@@ -29,7 +29,8 @@
 //       its list is exhausted (to install a new one), never to claim.
 //   I2  End only decreases between two installs, and only under LockList.
 //   I3  The owner claims flat position f (O3: Front := f+1) only after reading End > f at O2 of the same
-//       claim, with ListTransient raised from before O2 until after O3.
+//       claim, with ListTransient raised from before O2 until after O3. A batched claim (try_claim_up_to) takes
+//       positions [f, f+k) in one handshake, O3 storing Front := f+k, only after reading End >= f+k at O2.
 //   I4  Exactly-once (policies with forbids_store_buffering): after a steal's T5 reads Front = g, the owner
 //       never claims a position >= max(g, mid) of the stolen tail [mid, e); the thief keeps [max(mid, g), e)
 //       and the owner keeps everything it claimed. Each position is processed by exactly one worker.
@@ -39,7 +40,7 @@
 //       bounded number of its own steps whatever other threads do.
 //
 // LINEARIZATION POINTS
-//   claim       O3 (the store of Front) for a successful claim; O2 for "list exhausted".
+//   claim       O3 (the store of Front) for a successful claim, single or batched; O2 for "list exhausted".
 //   steal       T3 (the store of End := mid); the share's lower bound is fixed later, at T5.
 //   install     I2 (the store of End), under the owner's own LockList.
 //
@@ -47,7 +48,7 @@
 //   O1 ListTransient := 1      -- with F1, is seen by T4 unless O2 sees T3 (store buffering, F1 <-> F2)
 //   F1 owner StoreLoad fence   -- pairs with F2 (seq_cst fences) or with the heavy membarrier (Asymmetric)
 //   O2 read End                -- see F1; reads T3 or a later install
-//   O3 Front := f + 1          -- made visible to T5 through O4 -> T4
+//   O3 Front := f + 1          -- made visible to T5 through O4 -> T4 (f + k for a batch of k)
 //   O4 ListTransient := 0      -- release: pairs with T4's acquire, so T5 sees O3
 //   T1 read Front              -- sizes the share; a stale value is corrected at T5
 //   T2 read End                -- protected by LockList (L2 acquire <-> L3 release, I2 under the lock)
@@ -133,6 +134,40 @@ class Owner {
     return entry_.ids.begin + (f - entry_.flat_begin);
   }
 
+  // A batched claim: up to n consecutive positions of the entry that holds Front, in one handshake (O1 F1 O2 O3
+  // O4, with O3 storing Front := f + k). The ids claimed, or nullopt when the list is exhausted (or n is 0).
+  // k is bounded by n, by the entry (so the ids are one range) and by the End read at O2 (I3 for every claimed
+  // position). Wait-free, as try_claim: the same five shared accesses, plus plain reads of the owner's own list.
+  [[nodiscard]] std::optional<IdRange> try_claim_up_to(std::uint32_t n) noexcept {
+    announce();
+    storeload_fence();
+    return finish_claim_up_to(read_end(), n);
+  }
+  // The second half of try_claim_up_to, after O1, F1 and O2 (tests interleave it with a thief's steps).
+  [[nodiscard]] std::optional<IdRange> finish_claim_up_to(std::uint32_t end, std::uint32_t n) noexcept {
+    seek_front_entry();  // plain reads of our own list: no shared step between O2 and O3
+    const std::uint32_t f = front_;
+    if (f >= end || n == 0) {
+      retract();
+      return std::nullopt;
+    }
+    // kBatchIgnoresEnd (negative control only) bounds the batch by the entry alone.
+    const std::uint32_t bound = has(Policy::defects(), Defect::kBatchIgnoresEnd) ? entry_.flat_end() : end;
+    const std::uint32_t last = std::min({bound, entry_.flat_end(), f + n});
+    A::template store<Site::kOwnerClaimFront>(slot_.front, last);  // O3: the batch's linearization point
+    retract();
+    front_ = last;
+    return IdRange{entry_.ids.begin + (f - entry_.flat_begin), entry_.ids.begin + (last - entry_.flat_begin)};
+  }
+  // The ids the next batched claim would take if no thief intervened: the rest of the entry that holds Front
+  // (empty when the list is exhausted as far as the owner's own copy of it knows). Plain reads of the owner's
+  // own list; callers size a batch with it (by cost, not by count) and the claim itself is bounded by End.
+  [[nodiscard]] IdRange unclaimed_run() noexcept {
+    seek_front_entry();
+    if (front_ < entry_.flat_begin || front_ >= entry_.flat_end()) return {};
+    return {entry_.ids.begin + (front_ - entry_.flat_begin), entry_.ids.end};
+  }
+
   // Replaces the (exhausted) list with `list`, under the slot's LockList so no thief reads a half-written body.
   // Called by the owner's thread after a successful steal, and between frames by whichever thread prepares
   // the next frame while every worker waits; never while items of the old list are unclaimed.
@@ -172,6 +207,13 @@ class Owner {
 
  private:
   using A = Access<Backend, Policy>;
+
+  // Moves the private cursor to the entry holding flat position front_ (plain reads of our own list; it stays
+  // on the last entry once the list is used up).
+  void seek_front_entry() noexcept {
+    const std::uint32_t n = A::read(slot_.entry_count);
+    while (front_ >= entry_.flat_end() && entry_index_ + 1 < n) entry_ = A::read(slot_.entries[++entry_index_]);
+  }
 
   void retract() noexcept {
     // kOwnerNeverRetracts (negative control only) leaves ListTransient raised: a thief hangs at T4.

@@ -60,8 +60,9 @@ class ItemError : public std::runtime_error {
 struct SchedulerOptions {
   WorkerId workers = 2;
   ItemId items = 0;
-  std::uint64_t seed = 1;     // victim orders; the same seed gives the same orders
-  bool caller_works = false;  // the calling thread runs worker 0's part of each frame (see above)
+  std::uint64_t seed = 1;         // victim orders; the same seed gives the same orders
+  bool caller_works = false;      // the calling thread runs worker 0's part of each frame (see above)
+  std::uint32_t claim_batch = 1;  // items per owner handshake: 1 is the paper's loop (StealingWorkers::set_claim_batch)
 };
 
 // Timer: SteadyPhaseTimer fills the loss account's phase times (frame_stats.hpp); NoPhaseTimer leaves search,
@@ -71,6 +72,7 @@ class StealingScheduler {
  public:
   explicit StealingScheduler(const SchedulerOptions& options)
       : core_((require_fences(), options.workers), options.items, options.seed), caller_works_(options.caller_works) {
+    core_.set_claim_batch(options.claim_batch);
     threads_.reserve(options.workers);
     for (WorkerId w = caller_works_ ? 1 : 0; w < options.workers; ++w) {
       threads_.emplace_back([this, w] { worker_main(w); });

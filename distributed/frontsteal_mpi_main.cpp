@@ -57,8 +57,8 @@ int run_all(const fm::Options& o, fm::Workload& wl, int rank, int ranks, fm::Rma
   }
   MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (rank == 0 && status == 0) {
-    const fm::RunSummary summary{ranks,     o.scene, wl.n,      o.frames,   progress,
-                                 o.work_ns, o.skew,  o.threads, o.chunk_us, o.lifelines};
+    const fm::RunSummary summary{ranks,  o.scene,   wl.n,       o.frames,    progress,      o.work_ns,
+                                 o.skew, o.threads, o.chunk_us, o.lifelines, o.batch_claims};
     if (o.rounds > 0) {
       fm::PairedReport report{
           o.reference, paired.rounds_done, o.frames, o.margin_pct, fm::compare_arms(paired, o.margin_pct), {}};

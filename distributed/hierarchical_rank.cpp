@@ -157,21 +157,42 @@ void HierarchicalRank::work(std::uint32_t t) {
 
 // Claims items from the rank list into w's local list until they are worth --chunk-us by the last frame's times
 // (an item without one at the mean), at most kMaxChunk: by measured cost, not by count, so that a hot region's
-// heavy items stay in the rank list, stealable by other ranks. The join comes first (under the mutex), so worker
-// 0 never sees the local count at 0 while a chunk is on its way to a worker.
+// heavy items stay in the rank list, stealable by other ranks. With --batch-claims on, one owner handshake per
+// run of consecutive ids (the rank's claims are serialized by the mutex, so the time saved is every sibling's);
+// off, one per item. The join comes first (under the mutex), so worker 0 never sees the local count at 0 while a
+// chunk is on its way to a worker.
 bool HierarchicalRank::refill(Worker& w) {
   w.chunk.clear();
   const double target_s = o_.chunk_us * 1e-6, mean_s = mean_item_ns_ * 1e-9;
   {
     std::lock_guard<std::mutex> lock(rank_mutex_);
     local_active_.join();  // A1 (local)
+    const auto worth = [&](ItemId id) {
+      const float known = last_costs_[id];
+      return known > 0 ? double{known} : mean_s;
+    };
     double worth_s = 0;
-    for (std::uint32_t k = 0; k < kMaxChunk && worth_s < target_s; ++k) {
-      const std::optional<ItemId> id = window_.try_claim();
-      if (!id) break;
-      append_merging(w.chunk, {*id, *id + 1});
-      const float known = last_costs_[*id];
-      worth_s += known > 0 ? known : mean_s;
+    if (o_.batch_claims) {
+      // One handshake per run of consecutive ids: the run's ids up to the remaining worth (at least one).
+      for (std::uint32_t taken = 0; taken < kMaxChunk && worth_s < target_s;) {
+        const IdRange run = window_.unclaimed_run();
+        std::uint32_t n = 0;
+        for (double planned = worth_s; run.begin + n < run.end && taken + n < kMaxChunk && planned < target_s; ++n) {
+          planned += worth(run.begin + n);
+        }
+        const std::optional<IdRange> ids = window_.try_claim_up_to(n);
+        if (!ids) break;
+        append_merging(w.chunk, *ids);
+        for (ItemId id = ids->begin; id < ids->end; ++id) worth_s += worth(id);
+        taken += ids->size();
+      }
+    } else {
+      for (std::uint32_t k = 0; k < kMaxChunk && worth_s < target_s; ++k) {
+        const std::optional<ItemId> id = window_.try_claim();
+        if (!id) break;
+        append_merging(w.chunk, {*id, *id + 1});
+        worth_s += worth(*id);
+      }
     }
     if (w.chunk.empty()) {
       local_active_.leave();

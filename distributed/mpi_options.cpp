@@ -187,6 +187,11 @@ Options parse_options(int argc, char** argv) {
              "((r + 2^k) mod P), reads the count and waits to be invited, and the frame's end travels a tree of "
              "notices (lifelines.hpp); off = rounds of random victims with back-off, each after a read of the count")
       ->check(CLI::IsMember({"on", "off"}));
+  std::string batch_claims = "on";
+  cli.option("--batch-claims", batch_claims,
+             "hier: on = a refill claims each run of consecutive ids of its chunk from the rank list in one owner "
+             "handshake (core's Owner::try_claim_up_to); off = one handshake per item (Owner::try_claim)")
+      ->check(CLI::IsMember({"on", "off"}));
   cli.option("--ledger", o.ledger,
              "each rank records its frame and the items it ran in DIR/rank-R.ledger (a mapped file that outlives "
              "the rank): after a job a dead rank ended, --post-mortem DIR says what was lost");
@@ -196,6 +201,7 @@ Options parse_options(int argc, char** argv) {
   cli.quiet(o.quiet);
   cli.parse(argc, argv);
   o.lifelines = lifelines == "on";
+  o.batch_claims = batch_claims == "on";
   const auto is_hier = [](const std::string& s) { return s == "hier" || s == "hier-seeded"; };
   const bool hier =
       std::any_of(o.schedulers.begin(), o.schedulers.end(), is_hier) || (o.rounds > 0 && is_hier(o.reference));

@@ -47,9 +47,10 @@ struct Options {
   // hier (hierarchical_rank.hpp): worker threads per rank, and the work (us) of one chunk taken from the rank list.
   int threads = 2;
   double chunk_us = 50;
-  bool lifelines = true;    // hier: dry ranks wait on a lifeline graph (lifelines.hpp) instead of polling
-  std::string ledger;       // rank_ledger.hpp: each rank's flight recorder in this directory ("" = none)
-  std::string post_mortem;  // read the ledgers in this directory, report, exit (no MPI)
+  bool lifelines = true;     // hier: dry ranks wait on a lifeline graph (lifelines.hpp) instead of polling
+  bool batch_claims = true;  // hier: a refill claims a run of the rank list per owner handshake, not one item
+  std::string ledger;        // rank_ledger.hpp: each rank's flight recorder in this directory ("" = none)
+  std::string post_mortem;   // read the ledgers in this directory, report, exit (no MPI)
 };
 
 // The rank the launcher assigned (Open MPI, MPICH/hydra, PMIx), readable before MPI_Init; 0 when unknown.

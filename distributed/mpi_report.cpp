@@ -156,6 +156,7 @@ report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>&
   js["threads"] = run.threads;  // hier's workers per rank and refill size, for the same
   js["chunk_us"] = run.chunk_us;
   js["lifelines"] = run.lifelines;
+  js["batch_claims"] = run.batch_claims;
   return js;
 }
 

@@ -26,6 +26,7 @@ struct RunSummary {
   int threads = 1;            // hier's workers per rank (--threads)
   double chunk_us = 0;        // hier's refill size (--chunk-us)
   bool lifelines = false;     // hier's --lifelines
+  bool batch_claims = false;  // hier's --batch-claims
 };
 
 // The paired comparisons of a --rounds run (paired_rounds.hpp), as reported.

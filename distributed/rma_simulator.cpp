@@ -535,11 +535,16 @@ class Model {
       --k.local_active;
       x.holding = false;
     }
-    // A chunk of the rank list, claimed item by item under the rank mutex.
+    // A chunk of the rank list, claimed under the rank mutex: one owner claim per item, or with batch_claims one
+    // per run of consecutive ids (the code's list entries are such runs, merged).
     const double start = std::max(t, k.mutex_free);
     const std::uint32_t n = chunk_worth(k, r);
-    // One owner claim per item (core's Owner claims one at a time); with batch_claims, one per chunk.
-    k.mutex_free = start + lat_.rank_lock + (w_.batch_claims ? std::min(n, 1u) : n) * lat_.claim;
+    std::uint32_t claims = n;
+    if (w_.batch_claims && n > 0) {
+      claims = 1;
+      for (std::uint32_t i = k.front + 1; i < k.front + n; ++i) claims += k.list[i] != k.list[i - 1] + 1 ? 1 : 0;
+    }
+    k.mutex_free = start + lat_.rank_lock + claims * lat_.claim;
     x.parts[kClaims] += k.mutex_free - t;
     t = x.since = k.mutex_free;
     if (n > 0) {

@@ -53,8 +53,10 @@
 //               and its children in the binomial tree of puts rooted at rank 0, each rank forwarding to its own
 //               (at most log2 P + 1 hops): no waiting rank polls rank 0. Without lifelines
 //               (--lifelines off): rounds of random victims with back-off, each after an A3.
-//   BATCH CLAIMS (hier, Workload::batch_claims) a refill holds the rank mutex for one owner claim, not one per
-//               item: what a batched owner claim in core (Front advanced by n in one O1-O4) would give. MODEL ONLY.
+//   BATCH CLAIMS (hier, Workload::batch_claims, on by default as in frontsteal-mpi --batch-claims) a refill holds
+//               the rank mutex for one owner claim per run of consecutive ids of its chunk (core's
+//               Owner::try_claim_up_to: Front advanced by n in one O1-O4, bounded by a list entry); off, one per
+//               item.
 // LOSS ACCOUNT (hier): every worker's time is split into work (item costs), claims (per-item claims, progress
 // calls, rank-list refills under the mutex), local steals, remote steals (worker 0's one-sided operations,
 // termination reads included), idle (back-off), the tail (finished before the frame's slowest worker) and the
@@ -114,11 +116,10 @@ struct Workload {
   double light_ns = 2000;
   std::uint32_t skew = 20;
   int frames = 5;
-  int threads = 1;        // hier: workers per rank (the other schedulers: one per rank)
-  double chunk_us = 50;   // hier: a refill is about this much work (frontsteal-mpi --chunk-us)
-  bool lifelines = true;  // hier: LIFELINES below (frontsteal-mpi --lifelines, on by default)
-  // A MODEL-ONLY design option (not in frontsteal-mpi; every result that uses it says so):
-  bool batch_claims = false;  // hier: a refill claims its chunk from the rank list in one owner operation
+  int threads = 1;           // hier: workers per rank (the other schedulers: one per rank)
+  double chunk_us = 50;      // hier: a refill is about this much work (frontsteal-mpi --chunk-us)
+  bool lifelines = true;     // hier: LIFELINES below (frontsteal-mpi --lifelines, on by default)
+  bool batch_claims = true;  // hier: BATCH CLAIMS below (frontsteal-mpi --batch-claims, on by default)
 };
 
 // Where the workers' time went (hier; ns summed over every worker and frame): see LOSS ACCOUNT above.

@@ -58,7 +58,8 @@ MeasuredRun read_measured_run(const std::string& path) {
   }
   run.workload.threads = doc.value("threads", defaults.threads);
   run.workload.chunk_us = doc.value("chunk_us", defaults.chunk_us);
-  run.workload.lifelines = doc.value("lifelines", false);  // runs recorded before lifelines had none
+  run.workload.lifelines = doc.value("lifelines", false);        // runs recorded before lifelines had none
+  run.workload.batch_claims = doc.value("batch_claims", false);  // runs recorded before batch claims had none
   for (const report::Json& s : doc["schedulers"]) {
     run.schedulers.push_back({s.value("name", ""), s.value("median_frame_ms", 0.0)});
   }

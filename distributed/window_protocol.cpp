@@ -61,6 +61,8 @@ class CoreOverWindow final : public WindowProtocol {
         thief_(active_, win.capacity()) {}
 
   std::optional<ItemId> try_claim() override { return owner_.try_claim(); }
+  std::optional<IdRange> try_claim_up_to(std::uint32_t n) override { return owner_.try_claim_up_to(n); }
+  IdRange unclaimed_run() override { return owner_.unclaimed_run(); }
   void install(std::span<const IdRange> list) override { owner_.install(list); }
   std::uint32_t unclaimed() override {
     const std::uint32_t end = win_.local(kEnd).load(std::memory_order_acquire);

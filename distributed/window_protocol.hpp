@@ -39,6 +39,10 @@ class WindowProtocol {
 
   // The owner (this rank's slot).
   virtual std::optional<ItemId> try_claim() = 0;
+  // A batched claim: up to n ids of one list entry in one handshake (core's Owner::try_claim_up_to); and the
+  // ids it would take if no thief intervened (Owner::unclaimed_run), to size a batch by cost.
+  virtual std::optional<IdRange> try_claim_up_to(std::uint32_t n) = 0;
+  virtual IdRange unclaimed_run() = 0;
   virtual void install(std::span<const IdRange> list) = 0;
   // Items of this rank's list not yet claimed by its owner and not taken by a thief (End read locally, as O2).
   virtual std::uint32_t unclaimed() = 0;

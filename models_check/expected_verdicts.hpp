@@ -42,6 +42,10 @@ inline Expectation expected_verdict(const PolicyTable& policy, const ScenarioSpe
     // {pass, duplicate} here; a wrong expectation fails the run, so it cannot hide a bug.
     return {{Verdict::kPass}, "one entry per list: the wrong lower bound is never used (invisible here)"};
   }
+  if (has(policy.defects, Defect::kBatchIgnoresEnd)) {
+    if (scenario.claim_batch > 1) return {{Verdict::kDuplicate}, "negative control: a batch claims past End"};
+    return {{Verdict::kPass}, "single claims: a batch of one never passes End (invisible here)"};
+  }
   if (policy.defects != Defect::kNone) return {{Verdict::kDuplicate}, "negative control: the defect must be caught"};
   return {{Verdict::kDuplicate}, "at-least-once: store buffering at the handshake duplicates an item"};
 }

@@ -110,6 +110,7 @@ struct ProtocolSuite : rl::test_suite<ProtocolSuite<Threads, Mode>, Threads> {
     idle_seen_hook = &check_idle_seen;
     core = std::make_unique<Workers>(spec.workers, spec.items, 1);
     core->reseed(spec.initial);
+    core->set_claim_batch(spec.claim_batch);
     for (WorkerId w = 0; w < spec.victims.size(); ++w) core->set_victims(w, spec.victims[w]);
     for (ItemId i = 0; i < kMaxScenarioItems; ++i) {
       payload[i]($) = 0;

@@ -24,6 +24,7 @@ struct ScenarioSpec {
   std::vector<RangeList> initial;              // one list per worker
   std::vector<std::vector<WorkerId>> victims;  // empty: the seeded random orders
   bool with_caller = false;                    // an extra thread releases frames and reads the results
+  std::uint32_t claim_batch = 1;               // positions per owner handshake (StealingWorkers::set_claim_batch)
   WorkerId threads() const { return workers + (with_caller ? 1 : 0); }
 };
 
@@ -84,6 +85,15 @@ inline const std::vector<ScenarioSpec>& scenarios() {
        1,
        {{{0, 1}, {2, 3}, {1, 2}, {3, 4}}, {}},
        {}},
+      {"owner_batch_vs_thief",
+       "one owner claiming up to three items per handshake (Owner::try_claim_up_to), one thief",
+       2,
+       4,
+       1,
+       {{{0, 4}}, {}},
+       {},
+       false,
+       3},
       {"edge_victim_finishing",
        "both lists nearly done: a victim finishes while being stolen from",
        2,

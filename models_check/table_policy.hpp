@@ -73,7 +73,8 @@ inline std::vector<PolicyTable> known_stealing_policies() {
           table_of<BrokenSkipsReread>(),
           table_of<BrokenNoTransient>(),
           table_of<BrokenJoinsLate>(),
-          table_of<BrokenShareLowerBound>()};
+          table_of<BrokenShareLowerBound>(),
+          table_of<BrokenBatchIgnoresEnd>()};
 }
 
 // One-step weakenings, weakest last: loads seq_cst > acquire > relaxed; stores seq_cst > release > relaxed;

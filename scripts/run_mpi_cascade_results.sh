@@ -4,13 +4,13 @@
 # every scheduler (np{2,4}_cascade20000_shm.*), the SIMULATED 4-256 ranks from the committed calibrations
 # (simulated_cascade_4_256.*, plot in plots_simulated_cascade/), SIMULATED ranks x 16 threads with hier's loss
 # account and the workload's own limits (simulated_hier_4_256x16.*, plot in plots_simulated_hier/; 2,000,000 items,
-# and 8,000,000 at 256 ranks; at 256 ranks also without lifelines, _lifelines_off, and with the MODEL-ONLY batch
-# claims, _batch_claims_model_only), and the simulator validated against the 2-rank runs of both synthetic shapes
-# (simulator_validation_np2.*; hier with one thread per rank: 4 ranks or 2 x 2 threads share 2 vCPUs here, which
-# the model does not model). Needs a release build and a quiet machine. ~7 minutes.
+# and 8,000,000 at 256 ranks; at 256 ranks also without lifelines, _lifelines_off, and with one owner claim per
+# item instead of batch claims, _one_claim_per_item), and the simulator validated against the 2-rank runs of both
+# synthetic shapes (simulator_validation_np2.*; hier with one thread per rank: 4 ranks or 2 x 2 threads share 2
+# vCPUs here, which the model does not model). Needs a release build and a quiet machine. ~7 minutes.
 #   scripts/run_mpi_cascade_results.sh [BUILD_DIR]      (from the repository root; default build/release)
 set -eu
-case "${1:-}" in -h|--help) sed -n '2,8p' "$0"; exit 0 ;; esac
+case "${1:-}" in -h|--help) sed -n '2,11p' "$0"; exit 0 ;; esac
 build=${1:-build/release}
 mpi=$build/distributed/frontsteal-mpi
 sim=$build/distributed/frontsteal-mpi-simulate
@@ -42,9 +42,9 @@ h=$out/simulated_hier_4_256x16
     --calibration $out/calibration_np2_shm.json --json ${h}_8M.json --markdown ${h}_8M.md
   $sim --shape cascade --items 2000000 --ranks 256 --threads 16 --schedulers hier,hier-seeded --lifelines off \
     --calibration $out/calibration_np2_shm.json --json ${h}_lifelines_off.json --markdown ${h}_lifelines_off.md
-  $sim --shape cascade --items 2000000 --ranks 64,256 --threads 16 --schedulers hier,hier-seeded --batch-claims on \
-    --calibration $out/calibration_np2_shm.json --json ${h}_batch_claims_model_only.json \
-    --markdown ${h}_batch_claims_model_only.md; } > $h.txt
+  $sim --shape cascade --items 2000000 --ranks 64,256 --threads 16 --schedulers hier,hier-seeded --batch-claims off \
+    --calibration $out/calibration_np2_shm.json --json ${h}_one_claim_per_item.json \
+    --markdown ${h}_one_claim_per_item.md; } > $h.txt
 $sim --calibration $out/calibration_np2_shm.json --validate $out/np2_cascade20000_shm.json,$f.json \
   --json $out/simulator_validation_np2.json --markdown $out/simulator_validation_np2.md > $out/simulator_validation_np2.txt
 echo "run_mpi_cascade_results: done"

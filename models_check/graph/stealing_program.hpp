@@ -33,6 +33,7 @@ class StealingProgram final : public Program {
     item_marks_.assign(spec_.threads(), {});
     core_ = std::make_unique<Workers>(spec_.workers, spec_.items, 1);
     core_->reseed(spec_.initial);
+    core_->set_claim_batch(spec_.claim_batch);
     for (WorkerId w = 0; w < spec_.victims.size(); ++w) core_->set_victims(w, spec_.victims[w]);
     payload_.clear();
     frame_input_.clear();

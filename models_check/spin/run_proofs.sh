@@ -50,6 +50,15 @@ for n in 2 4; do
   proof "broken_skip_reread.tso0.p2n$n" safety fail -DP=2 -DN=$n -DPOLICY=FENCED -DBROKEN_SKIP_REREAD=1
 done
 proof "bound_runs_2.tso1.PAPER.p2n2" safety fail -DP=2 -DN=2 -DTSO=1 -DPOLICY=PAPER -DEXACT=0 -DBOUND_RUNS=1
+# Batched owner claims (Owner::try_claim_up_to): up to 2 positions per handshake, and its negative control.
+for mm in 0 1; do
+  for policy in FENCED MINIMAL; do
+    proof "exactly_once.tso$mm.$policy.p2n4.batch2" safety pass -DP=2 -DN=4 -DTSO=$mm -DPOLICY=$policy -DBATCH=2
+  done
+done
+proof "exactly_once.tso1.PAPER.p2n4.batch2" safety fail -DP=2 -DN=4 -DTSO=1 -DPOLICY=PAPER -DBATCH=2
+proof "broken_batch_ignores_end.tso0.p2n4" safety fail -DP=2 -DN=4 -DPOLICY=FENCED -DBATCH=2 -DBROKEN_BATCH_IGNORES_END=1
+proof "waitfree.tso1.FENCED.p2n2.batch2" safety pass -DP=2 -DN=2 -DTSO=1 -DWAITFREE=1 -DPOLICY=FENCED -DBATCH=2
 # P = 3: two frames under SC; one frame under TSO (two frames there take tens of minutes and gigabytes each).
 for policy in SEQCST FENCED MINIMAL ASYM PAPER; do
   proof "exactly_once.tso0.$policy.p3n2" safety pass -DP=3 -DN=2 -DTSO=0 -DPOLICY=$policy

@@ -42,6 +42,8 @@
  *     together with O4 (only the owner installs its own list during a frame).
  *   - Processing an item is a ghost counter runs[id], incremented in the same atomic step as O4 (after O4 the
  *     owner runs the item without further shared accesses, so where it runs does not matter for counting).
+ *     With -DBATCH=k the owner claims up to k positions per handshake (Owner::try_claim_up_to), and all of
+ *     them run in that step.
  *   - LockList is a test-and-set: L1 a load, L2 an xchg (locked: drains the buffer), L3 a store.
  *   - The owner's private copy of Front, the thief's staging (mid, end, copied body) and the per-worker frame
  *     fields are locals/ghost globals. The frame fields that change hands between frames (log, next list) are
@@ -111,6 +113,12 @@
 #endif
 #ifndef STEAL_BOUND
 #define STEAL_BOUND 0
+#endif
+#ifndef BATCH
+#define BATCH 1 /* positions per owner claim (Owner::try_claim_up_to): O3 stores Front := f + k, k <= BATCH */
+#endif
+#ifndef BROKEN_BATCH_IGNORES_END
+#define BROKEN_BATCH_IGNORES_END 0 /* the batch is bounded by the list, not by the End read at O2 */
 #endif
 #ifndef WAITFREE
 #define WAITFREE 0
@@ -391,7 +399,20 @@ claim_loop:
         e = 0;
         break
      :: else ->
+        /* q := the batch: up to BATCH positions, bounded by the End read at O2 (the list's length instead
+         * under the negative control); always 1 when BATCH is 1, the paper's loop */
+#if BATCH == 1
         sp(O3, me, FRONT(me), f + 1);
+#else
+#if BROKEN_BATCH_IGNORES_END
+        vb = LV(me, BODY(me));
+        q = (POP(vb) - f < BATCH -> POP(vb) - f : BATCH);
+        vb = 0;
+#else
+        q = (e - f < BATCH -> e - f : BATCH);
+#endif
+        sp(O3, me, FRONT(me), f + q);
+#endif
 #if WAITFREE
         if :: solo == me -> steps++ :: else fi;
         if :: solo == 255 -> solo = me; steps = 0 :: true fi;
@@ -408,25 +429,34 @@ claim_loop:
           mem[TRANS(me)] = 0;
           printf("worker %d  O4  store ListTransient[%d] := 0\n", me, me);
 #endif
-          vb = LV(me, BODY(me));
-          nth_item(vb, f, item);
-          vb = 0;
-          assert(item < N);
+#if BATCH == 1
+          q = 1;
+#endif
+          j = 0;
+          do
+          :: j >= q -> break
+          :: j < q ->
+             vb = LV(me, BODY(me));
+             nth_item(vb, f, item);
+             vb = 0;
+             assert(item < N);
 #if EXACT
-          assert(runs[item] == 0); /* exactly-once */
+             assert(runs[item] == 0); /* exactly-once */
 #endif
-          if /* saturates: 3 stands for "3 or more" (under PAPER+TSO an item can ping-pong between two workers,
-              * duplicated at every steal, without bound) */
-          :: runs[item] < 3 -> runs[item]++
-          :: else
-          fi;
+             if /* saturates: 3 stands for "3 or more" (under PAPER+TSO an item can ping-pong between two
+                 * workers, duplicated at every steal, without bound) */
+             :: runs[item] < 3 -> runs[item]++
+             :: else
+             fi;
 #if BOUND_RUNS
-          assert(runs[item] <= 2);
+             assert(runs[item] <= 2);
 #endif
-          logm[me] = logm[me] | (1 << item);
-          printf("worker %d      runs item %d (flat position %d of its list; run %d time(s) this frame)\n",
-                 me, item, f, runs[item]);
-          f++; item = 0; e = 0
+             logm[me] = logm[me] | (1 << item);
+             printf("worker %d      runs item %d (flat position %d of its list; run %d time(s) this frame)\n",
+                    me, item, f, runs[item]);
+             f++; j++; item = 0
+          od;
+          j = 0; q = 0; e = 0
         }
 #if WAITFREE
         if :: solo == me -> steps++; assert(steps <= 5); solo = 254 :: else fi;

@@ -67,6 +67,7 @@ TEST_CASE("every planted defect is one bit of its own and names the primitive it
   CHECK(fs::protocol_of(fs::BrokenJoinsLate::defects()) == fs::Protocol::kStealing);
   CHECK(fs::protocol_of(fs::BrokenShareLowerBound::defects()) == fs::Protocol::kStealing);
   CHECK(fs::protocol_of(fs::BrokenNeverRetracts::defects()) == fs::Protocol::kStealing);
+  CHECK(fs::protocol_of(fs::BrokenBatchIgnoresEnd::defects()) == fs::Protocol::kStealing);
   CHECK(fs::protocol_of(fs::Defect::kReuseWithoutGrace) == fs::Protocol::kPublication);
   CHECK(fs::protocol_of(fs::Defect::kPublishEachSurface) == fs::Protocol::kPublication);
   CHECK(fs::protocol_of(fs::Defect::kTakeLastWithoutCas) == fs::Protocol::kChaseLev);

@@ -224,6 +224,84 @@ TEMPLATE_TEST_CASE("negative controls: the exactly-once audit catches a broken p
   CHECK(audit.duplicated == 1u);
 }
 
+TEMPLATE_TEST_CASE("a batched claim takes up to n ids of one entry, bounded by End, in one handshake",
+                   "[core][protocol][batch]", fs::SeqCst, fs::Paper, fs::Fenced, fs::Asymmetric) {
+  if (!policy_usable<TestType>()) return;
+  Stage<TestType> s(10);
+  auto& owner = s.owner();
+  owner.install(RangeList{{0, 3}, {5, 10}, {3, 5}});  // flat positions 0-2, 3-7, 8-9
+  CHECK(owner.unclaimed_run() == IdRange{0, 3});
+  CHECK(owner.try_claim_up_to(2) == IdRange{0, 2});
+  CHECK(fs::Access<fs::StdBackend, TestType>::peek(s.slot().front) == 2u);  // O3 stored Front := 0 + 2
+  CHECK(owner.try_claim_up_to(5) == IdRange{2, 3});                         // the entry bounds the batch
+  CHECK(owner.unclaimed_run() == IdRange{5, 10});
+  CHECK(owner.try_claim() == 5u);                   // single and batched claims mix
+  CHECK(owner.try_claim_up_to(0) == std::nullopt);  // a batch of nothing claims nothing
+  CHECK(owner.try_claim_up_to(100) == IdRange{6, 10});
+  REQUIRE(s.thief().try_steal(s.slot()) == StealOutcome::kStolen);  // 2 left: the thief takes [4, 5)
+  CHECK(s.thief().share()[0] == IdRange{4, 5});
+  CHECK(owner.try_claim_up_to(100) == IdRange{3, 4});  // End = 9 bounds the batch, not the entry
+  CHECK(owner.try_claim_up_to(100) == std::nullopt);
+  CHECK(owner.claimed() == 9u);
+}
+
+// The batch analogue of the ListTransient test: the owner reads the old End at O2, the thief lowers End and
+// must wait at T4; the batch's O3 then covers part of the planned share, and T5 drops it.
+TEMPLATE_TEST_CASE("a thief skips the part of its share that a batched claim in flight took", "[core][protocol][batch]",
+                   fs::SeqCst, fs::Fenced, fs::Asymmetric) {
+  if (!policy_usable<TestType>()) return;
+  Stage<TestType> s(8);
+  auto& owner = s.owner();
+  auto& thief = s.thief();
+  owner.install(RangeList{{0, 8}});
+  REQUIRE(thief.lock_victim(s.slot()));
+  REQUIRE(thief.plan_share(s.slot()));  // Front = 0, End = 8: share [4, 8)
+  REQUIRE(thief.planned_mid() == 4u);
+  owner.announce();                            // O1
+  owner.storeload_fence();                     // F1
+  const std::uint32_t end = owner.read_end();  // O2 reads 8
+  thief.shrink_victim(s.slot());               // T3: End := 4
+  thief.storeload_fence();
+  CHECK_FALSE(thief.victim_quiescent(s.slot()));  // the batch is in flight
+  const auto claimed = owner.finish_claim_up_to(end, 6);
+  REQUIRE(claimed == IdRange{0, 6});  // O3: Front := 6, legal by the End read at O2
+  for (fs::ItemId id = claimed->begin; id < claimed->end; ++id) s.runs.record(id);
+  REQUIRE(thief.victim_quiescent(s.slot()));
+  const std::uint32_t front_after = thief.reread_front(s.slot());  // T5 reads 6
+  thief.unlock_victim(s.slot());
+  REQUIRE(thief.keep_unclaimed(front_after) == StealOutcome::kStolen);
+  CHECK(thief.skipped() == 2u);
+  CHECK(thief.share()[0] == IdRange{6, 8});
+  s.install_share();
+  CHECK(owner.try_claim_up_to(4) == std::nullopt);  // End = 4 < Front: the owner's list is done
+  s.drain(1);
+  const auto audit = s.runs.audit_and_reset();
+  INFO(audit);
+  CHECK(audit.exactly_once());
+}
+
+// The negative control: a batch bounded by its entry instead of End. After a completed steal the owner's next
+// batch runs into the thief's share: no weak memory needed, the order is sequentially consistent.
+TEMPLATE_TEST_CASE("negative control: a batch that ignores End runs stolen items twice", "[core][protocol][negative]",
+                   fs::BrokenBatchIgnoresEnd, fs::Fenced) {
+  Stage<TestType> s(8);
+  s.owner().install(RangeList{{0, 8}});
+  REQUIRE(s.thief().try_steal(s.slot()) == StealOutcome::kStolen);  // takes [4, 8), End := 4
+  s.install_share();
+  const auto claimed = s.owner().try_claim_up_to(6);
+  REQUIRE(claimed);
+  for (fs::ItemId id = claimed->begin; id < claimed->end; ++id) s.runs.record(id);
+  s.drain(0);
+  s.drain(1);
+  const auto audit = s.runs.audit_and_reset();
+  INFO(audit);
+  if constexpr (fs::has(TestType::defects(), fs::Defect::kBatchIgnoresEnd)) {
+    CHECK(audit.duplicated == 2u);  // ids 4 and 5
+  } else {
+    CHECK(audit.exactly_once());  // the same steps with the defect absent
+  }
+}
+
 TEMPLATE_TEST_CASE("steal-from-a-thief chain: worker 2 steals from worker 1's stolen list", "[core][protocol]",
                    fs::SeqCst, fs::Fenced, fs::Paper) {
   Stage<TestType> s(16, 3);

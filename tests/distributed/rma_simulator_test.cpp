@@ -261,13 +261,14 @@ TEST_CASE("simulated lifelines: dry ranks wait quietly, and the frame's end reac
   CHECK_THAT(dropped.audit_failure, Catch::Contains("never learned the frame was over"));
 }
 
-// Batch claims (MODEL ONLY): a refill that holds the rank mutex for one claim instead of one per item spends
-// less of the workers' time on claims.
+// Batch claims: a refill that holds the rank mutex for one claim per run of consecutive ids instead of one per
+// item spends less of the workers' time on claims.
 TEST_CASE("simulated batch claims spend less time claiming", "[rma_simulator]") {
   sim::Workload w = small();
   w.shape = frontsteal::mpi::CostShape::kCascade;
   w.items = 65536;
   w.threads = 16;
+  w.batch_claims = false;
   const sim::Result one_by_one = sim::simulate(sim::Scheduler::kHierSeeded, 4, w, shared_memory_like());
   w.batch_claims = true;
   const sim::Result batched = sim::simulate(sim::Scheduler::kHierSeeded, 4, w, shared_memory_like());
