@@ -29,6 +29,7 @@ template <class Policy, class Backend>
 ExecutionAudit run_scenario_on_threads(const model::ScenarioSpec& spec, std::uint64_t seed) {
   StealingWorkers<Backend, Policy> core(spec.workers, spec.items, seed);
   core.reseed(spec.initial);
+  core.set_claim_batch(spec.claim_batch);
   for (WorkerId w = 0; w < spec.victims.size(); ++w) core.set_victims(w, spec.victims[w]);
   // One counter per (frame, item), so a duplicate in one frame cannot hide a loss in another.
   const ItemId cells = static_cast<ItemId>(spec.items * spec.frames);

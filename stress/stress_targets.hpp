@@ -41,8 +41,8 @@ class StressTarget {
 template <class Policy, class Backend>
 class StealingTarget final : public StressTarget {
  public:
-  StealingTarget(WorkerId workers, ItemId items, std::uint64_t seed)
-      : scheduler_({.workers = workers, .items = items, .seed = seed}),
+  StealingTarget(WorkerId workers, ItemId items, std::uint64_t seed, std::uint32_t claim_batch = 1)
+      : scheduler_({.workers = workers, .items = items, .seed = seed, .claim_batch = claim_batch}),
         watchdog_(watch_workers(scheduler_, "frontsteal-stress: stealing/" + std::string(Policy::kName) + ", P=" +
                                                 std::to_string(workers) + ", " + std::to_string(items) + " items")) {}
   const FrameStats& run_frame(const ItemFunction& process) override { return scheduler_.run_frame(process); }
@@ -143,11 +143,14 @@ inline std::vector<TargetInfo> scheduler_targets() {
   return all;
 }
 
+// `claim_batch` > 1: the owners claim that many items per handshake (Owner::try_claim_up_to), named "+batchN".
 template <class Policy, class Backend = ChaosBackend>
-TargetInfo stealing_target() {
-  return {std::string("stealing/") + std::string(Policy::kName), Policy::kContract, Policy::defects() != Defect::kNone,
-          [](WorkerId p, ItemId n, std::uint64_t seed) -> std::unique_ptr<StressTarget> {
-            return std::make_unique<StealingTarget<Policy, Backend>>(p, n, seed);
+TargetInfo stealing_target(std::uint32_t claim_batch = 1) {
+  const std::string batch = claim_batch > 1 ? "+batch" + std::to_string(claim_batch) : "";
+  return {std::string("stealing/") + std::string(Policy::kName) + batch, Policy::kContract,
+          Policy::defects() != Defect::kNone,
+          [claim_batch](WorkerId p, ItemId n, std::uint64_t seed) -> std::unique_ptr<StressTarget> {
+            return std::make_unique<StealingTarget<Policy, Backend>>(p, n, seed, claim_batch);
           },
           [](const model::ScenarioSpec& spec, std::uint64_t seed) {
             return run_scenario_on_threads<Policy, Backend>(spec, seed);
@@ -159,8 +162,10 @@ inline std::vector<TargetInfo> targets() {
                               stealing_target<Paper>(),
                               stealing_target<Fenced>(),
                               stealing_target<Minimal>(),
+                              stealing_target<Fenced>(4),
                               stealing_target<BrokenSkipsReread>(),
-                              stealing_target<BrokenNoTransient>()};
+                              stealing_target<BrokenNoTransient>(),
+                              stealing_target<BrokenBatchIgnoresEnd>(4)};
   if (membarrier_status().available) all.insert(all.begin() + 3, stealing_target<Asymmetric>());
   for (auto& t : scheduler_targets()) all.push_back(std::move(t));
   return all;
