@@ -27,6 +27,14 @@ void report_per_item(benchmark::State& state, std::uint64_t items) {
       benchmark::Counter(static_cast<double>(items), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+// Four ranges, so the cursor walk between ranges is part of what is measured.
+fs::RangeList four_ranges() {
+  return {{0, kItemsPerList / 4},
+          {kItemsPerList / 4, kItemsPerList / 2},
+          {kItemsPerList / 2, 3 * kItemsPerList / 4},
+          {3 * kItemsPerList / 4, kItemsPerList}};
+}
+
 void BM_PlainLoop(benchmark::State& state) {
   std::uint64_t items = 0;
   for (auto _ : state) {
@@ -46,11 +54,7 @@ void BM_OwnerPath(benchmark::State& state) {
   }
   fs::StealingWorkers<fs::StdBackend, Policy> workers(1, kItemsPerList, 1);
   auto& owner = workers.owner(0);
-  // Four ranges, so the cursor walk between ranges is part of what is measured.
-  const fs::RangeList list{{0, kItemsPerList / 4},
-                           {kItemsPerList / 4, kItemsPerList / 2},
-                           {kItemsPerList / 2, 3 * kItemsPerList / 4},
-                           {3 * kItemsPerList / 4, kItemsPerList}};
+  const fs::RangeList list = four_ranges();
   std::uint64_t items = 0;
   for (auto _ : state) {
     owner.install(list);
@@ -65,10 +69,7 @@ template <class Policy>
 void BM_OwnerPathBatched(benchmark::State& state) {
   fs::StealingWorkers<fs::StdBackend, Policy> workers(1, kItemsPerList, 1);
   auto& owner = workers.owner(0);
-  const fs::RangeList list{{0, kItemsPerList / 4},
-                           {kItemsPerList / 4, kItemsPerList / 2},
-                           {kItemsPerList / 2, 3 * kItemsPerList / 4},
-                           {3 * kItemsPerList / 4, kItemsPerList}};
+  const fs::RangeList list = four_ranges();
   const auto batch = static_cast<std::uint32_t>(state.range(0));
   std::uint64_t items = 0;
   for (auto _ : state) {
