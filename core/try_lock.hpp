@@ -6,7 +6,10 @@
 // new list (lock_spinning), which is why no owner *claim* ever waits on it.
 //
 // Orders: L2 (acquire) pairs with L3 (release) of the previous holder, so whatever a holder wrote to the
-// slot's End and list body is visible to the next holder. L1 is only a hint that saves an exchange.
+// slot's End and list body is visible to the next holder. L1 is only a hint that saves an exchange: on a
+// cache-coherent machine a load of a held lock leaves its line shared where an exchange would take it. A backend
+// on which every access is a round trip (one-sided operations: distributed/rma_backend.hpp) declares
+// `static constexpr bool kSkipLockProbe = true;` and tries L2 at once; L2's result alone decides either way.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +18,12 @@
 #include "core/state_home.hpp"
 
 namespace frontsteal {
+
+// Whether try_lock probes with L1 before L2 (every backend but those that declare kSkipLockProbe).
+template <class Backend>
+inline constexpr bool kProbesLock = !requires {
+  requires Backend::kSkipLockProbe;
+};
 
 template <class Backend, class Policy>
 class TryLock {
@@ -25,7 +34,9 @@ class TryLock {
   TryLock& operator=(const TryLock&) = delete;
 
   [[nodiscard]] bool try_lock() noexcept {
-    if (A::template load<Site::kLockProbe>(held_) != 0u) return false;               // L1
+    if constexpr (kProbesLock<Backend>) {
+      if (A::template load<Site::kLockProbe>(held_) != 0u) return false;  // L1
+    }
     return A::template exchange<Site::kLockAcquire>(held_, std::uint32_t{1}) == 0u;  // L2
   }
 

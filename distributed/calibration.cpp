@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
+#include <vector>
 
 #include "distributed/calibration_operations.hpp"
 #include "distributed/rank_watchdog.hpp"
@@ -24,8 +26,10 @@ constexpr int kTagPing = 185;
 constexpr std::size_t kBootstrapSampleCap = 500;  // an evenly strided subsample enters the bootstrap
 
 // Times `op` kReps times or for at most op_s seconds; the watchdog names the operation if one never returns.
-template <class Op>
-CalibrationRow time_op(std::string_view what, double op_s, Op&& op) {
+// `after` runs after each repetition, outside the timed region.
+template <class Op, class After = void (*)()>
+CalibrationRow time_op(
+    std::string_view what, double op_s, Op&& op, After&& after = [] {}) {
   set_phase(what.data());  // a calibration_ops name: a NUL-terminated literal
   std::vector<double> ns;
   ns.reserve(kReps);
@@ -36,6 +40,7 @@ CalibrationRow time_op(std::string_view what, double op_s, Op&& op) {
     op();
     const auto t1 = Clock::now();
     ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count());
+    after();
     note_progress();
     if (t1 > deadline) {
       row.time_bounded = true;
@@ -52,11 +57,32 @@ CalibrationRow time_op(std::string_view what, double op_s, Op&& op) {
   return row;
 }
 
-std::vector<CalibrationRow> measure_from_rank0(const Options& o, RmaWindow& win) {
+// One remote steal from rank 1's slot by core's Thief over the window, timed; after each, rank 1's End is put
+// back (rank 1 never claims), so every repetition takes a share. `operations` counts what one steal issued.
+CalibrationRow time_remote_steal(std::string_view what, double op_s, RmaWindow& win, WindowProtocol& thief,
+                                 std::uint32_t full_end) {
+  const std::uint64_t before = win.operations();
+  std::uint64_t restores = 0;
+  CalibrationRow row = time_op(
+      what, op_s,
+      [&] {
+        if (thief.try_steal(1, StealHooks{}) != StealOutcome::kStolen)
+          throw std::runtime_error("calibration: a remote steal from rank 1's full list took nothing");
+      },
+      [&] {
+        win.put(1, kEnd, full_end);
+        ++restores;
+      });
+  row.operations = static_cast<double>(win.operations() - before - restores) / row.repetitions;
+  return row;
+}
+
+std::vector<CalibrationRow> measure_from_rank0(const Options& o, RmaWindow& win, WindowProtocol& thief,
+                                               std::uint32_t full_end) {
   std::vector<CalibrationRow> rows;
   const double s = o.calibrate_op_s;
   rows.push_back(time_op(ops::kGet, s, [&] { (void)win.get(1, kFront); }));
-  rows.push_back(time_op(ops::kPut, s, [&] { win.put(1, kEntryCount, 0u); }));
+  rows.push_back(time_op(ops::kPut, s, [&] { win.put(1, kEnd, full_end); }));  // the value it holds
   rows.push_back(time_op(ops::kCompareAndSwap, s, [&] { (void)win.compare_and_swap(1, kLock, 7u, 7u); }));
   rows.push_back(time_op(ops::kFetchAndOp, s, [&] { (void)win.fetch_and_op(1, kActive, 0u, MPI_SUM); }));
   rows.push_back(time_op(ops::kFlush, s, [&] { win.flush(1); }));
@@ -85,6 +111,16 @@ std::vector<CalibrationRow> measure_from_rank0(const Options& o, RmaWindow& win)
     MPI_Recv(&word, 1, MPI_UINT32_T, 1, kTagPing, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
   }));
   rows.push_back(time_op(ops::kClockFloor, s, [] {}));
+  {
+    std::byte header[kHeaderBytes];
+    std::vector<SegmentEntry> entries(std::min<std::uint32_t>(64, win.capacity()));
+    rows.push_back(time_op(
+        ops::kView, s, [&] { win.get_view(1, static_cast<std::uint32_t>(entries.size()), header, entries.data()); }));
+  }
+  rows.push_back(time_remote_steal(ops::kStealView, s, win, thief, full_end));
+  read_victims_in_views(false);
+  rows.push_back(time_remote_steal(ops::kStealWords, s, win, thief, full_end));
+  read_victims_in_views(true);
   return rows;
 }
 
@@ -103,6 +139,7 @@ report::Json calibration_json(const std::vector<CalibrationRow>& rows, int ranks
                     {"median_ns", r.median_ns},
                     {"median_ci95_ns", {r.ci_low_ns, r.ci_high_ns}},
                     {"repetitions", r.repetitions},
+                    {"one_sided_operations", r.operations},
                     {"time_bounded", r.time_bounded}});
   }
   doc["operations"] = list;
@@ -118,19 +155,28 @@ int calibrate(const Options& o, int rank, int ranks, RmaWindow& win, const Progr
     return 2;
   }
   arm_watchdog();
+  // Rank 1's list for the remote steals: one range of the window's capacity, installed by its owner.
+  const auto protocol = make_window_protocol(win, ranks, false, WindowPolicy::kFenced);
+  const std::uint32_t full_end = win.capacity();
+  if (rank == 1) protocol->install(RangeList{{0, static_cast<ItemId>(full_end)}});
   MPI_Barrier(MPI_COMM_WORLD);
   if (rank == 0) {
-    const std::vector<CalibrationRow> rows = measure_from_rank0(o, win);
+    const std::vector<CalibrationRow> rows = measure_from_rank0(o, win, *protocol, full_end);
     for (int r = 1; r < ranks; ++r) MPI_Send(nullptr, 0, MPI_BYTE, r, kTagCalibrationDone, MPI_COMM_WORLD);
     std::printf(
         "calibration: rank 0 -> rank 1, up to %d repetitions or %.1f s each, median [95 %% CI] ns "
         "(measured, this machine; %s)\n",
         kReps, o.calibrate_op_s, progress.describe().c_str());
     for (const CalibrationRow& r : rows) {
-      std::printf("  %-52s %10.0f ns  [%.0f, %.0f]  n=%d%s\n", r.operation.c_str(), r.median_ns, r.ci_low_ns,
+      std::printf("  %-52s %10.0f ns  [%.0f, %.0f]  n=%d%s", r.operation.c_str(), r.median_ns, r.ci_low_ns,
                   r.ci_high_ns, r.repetitions, r.time_bounded ? " (time-bounded)" : "");
+      if (r.operations > 0) std::printf("  %.1f one-sided operations each", r.operations);
+      std::printf("\n");
     }
     std::printf("published reference (one computer, async progress): get ~1300 ns, CAS ~1700 ns\n");
+    std::printf(
+        "the remote steals' A1 lands on rank 0's own part (the active count's home): a thief on another rank pays "
+        "one fetch-and-op round trip more\n");
     if (!o.json.empty()) {
       report::write_atomically(o.json, calibration_json(rows, ranks, progress).dump(2) + "\n");
       std::fprintf(stderr, "%s: wrote %s\n", kProgram.data(), o.json.c_str());

@@ -1,6 +1,9 @@
 // calibration.hpp — frontsteal-mpi --calibrate: the one-sided latencies (get, put, CAS, fetch-and-op, flush)
-// from rank 0 to rank 1 and the owner's per-item costs (claim, progress call, request poll), as medians with
-// 95 % bootstrap intervals; the inputs of the distributed simulator (rma_simulator.hpp).
+// from rank 0 to rank 1, a whole remote steal by core's Thief (one view, and word by word for comparison, with
+// the one-sided operations each takes) and the owner's per-item costs (claim, progress call, request poll), as
+// medians with 95 % bootstrap intervals; the inputs of the distributed simulator (rma_simulator.hpp).
+// The steals: rank 1 installs one list of `capacity` items and never claims; rank 0 steals from it, and after
+// each steal (outside the timed region) puts rank 1's End back, so that every timed steal takes a share.
 //
 // OVER TCP. The first cut's target waited in MPI_Barrier while rank 0 timed its operations; over osc/pt2pt
 // every operation needs the target's progress engine (owner_progress.hpp). The reported hang did not reproduce
@@ -28,6 +31,7 @@ struct CalibrationRow {
   double median_ns = 0, ci_low_ns = 0, ci_high_ns = 0;
   int repetitions = 0;
   bool time_bounded = false;  // stopped by --calibrate-op-s before the repetition count
+  double operations = 0;      // one-sided operations per repetition (the remote steals; 0 where not counted)
 };
 
 // Collective; rank 0 prints the table (and writes --json). Returns the exit status (2: fewer than 2 ranks).

@@ -20,5 +20,8 @@ inline constexpr std::string_view kProgressCall = "owner progress call (MPI_Ipro
 inline constexpr std::string_view kRequestPoll = "request owner poll (MPI_Iprobe, nothing pending)";
 inline constexpr std::string_view kPingPong = "MPI_Send/MPI_Recv ping-pong 4 B (round trip)";
 inline constexpr std::string_view kClockFloor = "clock pair alone (measurement floor)";
+inline constexpr std::string_view kView = "thief's view: one MPI_Get, 16 B + 64 entries";
+inline constexpr std::string_view kStealView = "remote steal, core's Thief, one view (default)";
+inline constexpr std::string_view kStealWords = "remote steal, core's Thief, word-by-word reads";
 
 }  // namespace frontsteal::mpi::calibration_ops

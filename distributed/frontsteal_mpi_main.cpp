@@ -18,6 +18,7 @@
 #include "distributed/rank_ledger.hpp"
 #include "distributed/rank_watchdog.hpp"
 #include "distributed/scheduler_run.hpp"
+#include "distributed/window_protocol.hpp"
 #include "distributed/window_self_test.hpp"
 
 namespace fm = frontsteal::mpi;
@@ -57,8 +58,8 @@ int run_all(const fm::Options& o, fm::Workload& wl, int rank, int ranks, fm::Rma
   }
   MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (rank == 0 && status == 0) {
-    const fm::RunSummary summary{ranks,  o.scene,   wl.n,       o.frames,    progress,      o.work_ns,
-                                 o.skew, o.threads, o.chunk_us, o.lifelines, o.batch_claims};
+    const fm::RunSummary summary{ranks,  o.scene,   wl.n,       o.frames,    progress,       o.work_ns,
+                                 o.skew, o.threads, o.chunk_us, o.lifelines, o.batch_claims, o.thief_views};
     if (o.rounds > 0) {
       fm::PairedReport report{
           o.reference, paired.rounds_done, o.frames, o.margin_pct, fm::compare_arms(paired, o.margin_pct), {}};
@@ -136,6 +137,8 @@ int main(int argc, char** argv) {
     fm::note_progress();
     fm::RmaWindow win(MPI_COMM_WORLD, std::max<std::uint32_t>(wl.n, 1));
     win.plant_read_before_flush(o.defect == "read-before-flush");
+    fm::plant_stale_view(o.defect == "stale-view");
+    fm::read_victims_in_views(o.thief_views);
     // A refusal ends this scope normally: the window is freed before MPI_Finalize on every path.
     status = refuse_unusable_window(win, rank);
     if (status == 0) {

@@ -134,13 +134,14 @@ Options parse_options(int argc, char** argv) {
   cli.option("--die", die, "R:F: rank R exits abruptly (status 3) after its first item of frame F (fault test)")
       ->check(integers_validator({1 << 20, 100000}, "RANK:FRAME"));
   cli.option("--plant-defect", o.defect,
-             "negative controls: none | skip-reread (rma thief skips T4/T5) | "
+             "negative controls: none | skip-reread (rma thief skips T4/T5) | stale-view (rma thief's one-Get view "
+             "of a victim outlives its stores and answers T5: Front as it was at T1) | "
              "request-keeps-share (request owner sends a share and keeps it) | read-before-flush (one-sided results "
              "read before MPI_Win_flush: the start-up window self-test must fail over osc/pt2pt) | "
              "lifeline-drops-notice (hier: a rank that learns the frame is over tells no other rank: the ranks "
              "waiting on their lifelines never learn it, and the watchdog must end the job)")
-      ->check(
-          CLI::IsMember({"none", "skip-reread", "request-keeps-share", "read-before-flush", "lifeline-drops-notice"}));
+      ->check(CLI::IsMember(
+          {"none", "skip-reread", "stale-view", "request-keeps-share", "read-before-flush", "lifeline-drops-notice"}));
   cli.flag("--force-overlap", o.force_overlap,
            "rma thieves wait, before T3, until the victim has claimed into the planned share");
   cli.option("--owner-fence", o.owner_fence,
@@ -192,6 +193,11 @@ Options parse_options(int argc, char** argv) {
              "hier: on = a refill claims each run of consecutive ids of its chunk from the rank list in one owner "
              "handshake (core's Owner::try_claim_up_to); off = one handshake per item (Owner::try_claim)")
       ->check(CLI::IsMember({"on", "off"}));
+  std::string thief_reads = "view";
+  cli.option("--thief-reads", thief_reads,
+             "rma, hier: view = a thief reads a victim's Front, End and list in one MPI_Get (rma_backend.hpp V1); "
+             "words = one operation per word, for comparison")
+      ->check(CLI::IsMember({"view", "words"}));
   cli.option("--ledger", o.ledger,
              "each rank records its frame and the items it ran in DIR/rank-R.ledger (a mapped file that outlives "
              "the rank): after a job a dead rank ended, --post-mortem DIR says what was lost");
@@ -202,6 +208,7 @@ Options parse_options(int argc, char** argv) {
   cli.parse(argc, argv);
   o.lifelines = lifelines == "on";
   o.batch_claims = batch_claims == "on";
+  o.thief_views = thief_reads == "view";
   const auto is_hier = [](const std::string& s) { return s == "hier" || s == "hier-seeded"; };
   const bool hier =
       std::any_of(o.schedulers.begin(), o.schedulers.end(), is_hier) || (o.rounds > 0 && is_hier(o.reference));

@@ -49,6 +49,7 @@ struct Options {
   double chunk_us = 50;
   bool lifelines = true;     // hier: dry ranks wait on a lifeline graph (lifelines.hpp) instead of polling
   bool batch_claims = true;  // hier: a refill claims a run of the rank list per owner handshake, not one item
+  bool thief_views = true;   // rma, hier: a thief reads a victim in one MPI_Get (rma_backend.hpp V1), not word by word
   std::string ledger;        // rank_ledger.hpp: each rank's flight recorder in this directory ("" = none)
   std::string post_mortem;   // read the ledgers in this directory, report, exit (no MPI)
 };

@@ -16,6 +16,8 @@ namespace {
 double total_of(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0); }
 double max_of(const std::vector<double>& v) { return v.empty() ? 0 : *std::max_element(v.begin(), v.end()); }
 double mean_latency_us(const RankStats& s) { return s.steals > 0 ? 1e6 * s.steal_latency_s / s.steals : 0.0; }
+// One-sided operations per successful one-sided steal (0 for schedulers that steal by message).
+double operations_per_steal(const RankStats& s) { return s.steals > 0 ? s.steal_operations / s.steals : 0.0; }
 
 // The first table, as it has always been printed (its columns are what earlier results files hold).
 void print_classic_table(const RunSummary& run, const std::vector<SchedulerResult>& results) {
@@ -62,6 +64,7 @@ report::Table intervals_table(const std::vector<SchedulerResult>& results) {
                    {"owner_ns_ci_low", "95% CI low"},
                    {"owner_ns_ci_high", "95% CI high"},
                    {"progress_calls", "progress calls"},
+                   {"operations_per_steal", "one-sided ops/steal"},
                    {"noise", "noise", false}});
   for (const SchedulerResult& r : results) {
     std::vector<double> ms(r.frame_s.size());
@@ -80,6 +83,7 @@ report::Table intervals_table(const std::vector<SchedulerResult>& results) {
            stole ? Cell::fixed(s.steal_latency_ci_high_us, 1) : Cell::empty(),
            Cell::fixed(s.owner_overhead_median_ns, 1), Cell::fixed(s.owner_overhead_ci_low_ns, 1),
            Cell::fixed(s.owner_overhead_ci_high_ns, 1), Cell(static_cast<std::int64_t>(s.progress_calls)),
+           stole && s.steal_operations > 0 ? Cell::fixed(operations_per_steal(s), 1) : Cell::empty(),
            first ? Cell(r.noise.busy ? "NOISY" : "quiet") : Cell("")});
     }
   }
@@ -136,7 +140,8 @@ report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>&
            {"steal_latency_median_ci95_us", interval(s.steal_latency_ci_low_us, s.steal_latency_ci_high_us)},
            {"owner_overhead_median_ci95_ns", interval(s.owner_overhead_ci_low_ns, s.owner_overhead_ci_high_ns)},
            {"progress_calls", s.progress_calls},
-           {"local_steals", s.local_steals}});
+           {"local_steals", s.local_steals},
+           {"one_sided_operations_per_steal", operations_per_steal(s)}});
     }
     sj["median_frame_ms_ci95"] = interval(f.low, f.high);
     sj["frames_per_s_from_median"] = f.median > 0 ? 1000 / f.median : 0.0;
@@ -157,6 +162,7 @@ report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>&
   js["chunk_us"] = run.chunk_us;
   js["lifelines"] = run.lifelines;
   js["batch_claims"] = run.batch_claims;
+  js["thief_reads"] = run.thief_views ? "view" : "words";
   return js;
 }
 

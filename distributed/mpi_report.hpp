@@ -27,6 +27,7 @@ struct RunSummary {
   double chunk_us = 0;        // hier's refill size (--chunk-us)
   bool lifelines = false;     // hier's --lifelines
   bool batch_claims = false;  // hier's --batch-claims
+  bool thief_views = true;    // --thief-reads view
 };
 
 // The paired comparisons of a --rounds run (paired_rounds.hpp), as reported.

@@ -27,7 +27,8 @@ struct RankStats {
   // Medians with 95 % percentile-bootstrap intervals (measure/paired_comparison.hpp), computed on the rank.
   double steal_latency_median_us = 0, steal_latency_ci_low_us = 0, steal_latency_ci_high_us = 0;
   double owner_overhead_ci_low_ns = 0, owner_overhead_ci_high_ns = 0;
-  double local_steals = 0;  // hier: steals between the rank's own worker threads
+  double local_steals = 0;      // hier: steals between the rank's own worker threads
+  double steal_operations = 0;  // rma, hier: one-sided operations spent by the successful steals (rma_backend.hpp)
 };
 inline constexpr int kRankStatFields = sizeof(RankStats) / sizeof(double);
 

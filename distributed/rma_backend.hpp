@@ -21,16 +21,37 @@
 //       so it is complete at the target before T4's Get is issued (G5).
 //   spin_pause (T4, an owner taking its own lock): yields the core after a burst, as StdBackend; with more
 //       ranks than cores the rank waited for may be the one not running.
+// ONE VIEW PER STEAL (V1-V3). A thief's reads under the victim's LockList, T1, T2, the entry count and the list
+// body, are one MPI_Get (RmaWindow::get_view: the header and the first entries), not one round trip each:
+//   V1  The load at T1 (Site::kThiefReadFront) of another rank's Front takes the view and answers from it; the
+//       load at T2 and reads of that rank's entry count and entries answer from the view (an entry beyond it is
+//       an MPI_Get of its own, the view kept). Every other access by this thread ends the view: T3's Put, A1, a
+//       fence, T4, T5, L3; so T4 and T5 are always fresh operations, after T3's flush (G5).
+//   V2  Why it is the sequential code: core's thief reads these words after L2, holding the victim's LockList.
+//       While it holds it, End, the entry count and the body are written by no one (stealing_protocol.hpp I1,
+//       I2: thieves and installs write them only under that lock), so one Get returns what T2 and the body
+//       reads would return at any moment of the lock; Front may move (O3) during the Get, and T1 reads it at
+//       some moment after L2, the race the protocol already allows (T1 sizes the share, T5 corrects it).
+//   V3  The lock probe is skipped (kSkipLockProbe, try_lock.hpp): over one-sided operations it is a round trip
+//       that saves nothing; L2's exchange answers the same question.
+// A successful steal is then L2, the view, A1, T3, T4 (once per poll), T5, L3: 7 one-sided operations, where the
+// word-by-word reads took 5 + log2(entries) + the entries copied. Its negative control (plant_stale_view: the
+// view outlives the thief's stores and answers T5, a T5 that reads Front as it was at T1) duplicates items the
+// victim claims during the steal; the forced-overlap audit catches it (tests/CMakeLists.txt).
+//
 // A write to another rank's plain cell is a protocol error here (core writes list bodies only at install, into
 // its own slot): the backend's invariant stops the run with the site's line.
 //
 // Backends are static: the fence's window (for MPI_Win_sync) is bound per process by an RmaFenceWindow scope.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
+#include <vector>
 
 #include "core/memory_order.hpp"
 #include "core/site.hpp"
@@ -125,14 +146,26 @@ struct RmaBackend {
   using Cell = RmaCell<T>;
   using Where = SourceLocation;
 
+  // V3: L1 would be a round trip of its own (try_lock.hpp).
+  static constexpr bool kSkipLockProbe = true;
+
   template <class T>
-  static T load(const Atomic<T>& a, Mo mo, Site, Where) {
+  static T load(const Atomic<T>& a, Mo mo, Site site, Where) {
+    ThiefView& v = view();
+    if (!a.accumulate_only() && !a.local()) {
+      if (site == Site::kThiefReadFront && read_views())
+        return v.take(a.window(), a.rank()).word(a.field().disp);  // V1: T1
+      if (v.covers(a.window(), a.rank()) && (site == Site::kThiefReadEnd || stale_view_answers(site)))
+        return v.word(a.field().disp);  // V1: T2 (and T5 under the planted defect only)
+    }
+    end_view();
     if (a.accumulate_only()) return a.window().atomic_read(a.rank(), a.field());
     if (a.local()) return a.ref().load(StdBackend::native(mo));
     return a.window().get(a.rank(), a.field());
   }
   template <class T>
   static void store(const Atomic<T>& a, T v, Mo mo, Site, Where) {
+    end_view();
     if (a.accumulate_only()) {
       if (a.local() && releases(mo)) a.window().sync();  // G3: publish this rank's earlier local stores
       a.window().accumulate_replace(a.rank(), a.field(), v);
@@ -144,21 +177,25 @@ struct RmaBackend {
   }
   template <class T>
   static T exchange(const Atomic<T>& a, T v, Mo, Site, Where w) {
+    end_view();
     accumulate_word(a, w);
     return a.window().fetch_and_op(a.rank(), a.field(), v, MPI_REPLACE);
   }
   template <class T>
   static T fetch_add(const Atomic<T>& a, T v, Mo, Site, Where w) {
+    end_view();
     accumulate_word(a, w);
     return a.window().fetch_and_op(a.rank(), a.field(), v, MPI_SUM);
   }
   template <class T>
   static T fetch_sub(const Atomic<T>& a, T v, Mo, Site, Where w) {
+    end_view();
     accumulate_word(a, w);
     return a.window().fetch_and_op(a.rank(), a.field(), static_cast<T>(T{0} - v), MPI_SUM);  // unsigned wrap
   }
   template <class T>
   static bool compare_exchange(const Atomic<T>& a, T& expected, T desired, Mo, Mo, Site, Where w) {
+    end_view();
     accumulate_word(a, w);
     const T found = a.window().compare_and_swap(a.rank(), a.field(), expected, desired);
     if (found == expected) return true;
@@ -167,6 +204,7 @@ struct RmaBackend {
   }
 
   static void fence(Fence f, Site site, Where where) {
+    end_view();
     if (F1 == OwnerFence::kWinSync && site == Site::kOwnerStoreLoadFence && fence_window() != nullptr) {
       fence_window()->sync();  // G3
     }
@@ -176,6 +214,7 @@ struct RmaBackend {
   template <class T>
   static T read(const Cell<T>& c, Where) {
     T v;
+    if (!c.local() && view().covers(c.window(), c.rank()) && view().answer(c.disp(), &v, sizeof(T))) return v;  // V1
     if (c.local()) {
       std::memcpy(&v, c.window().local_bytes(c.disp()), sizeof(T));
     } else {
@@ -198,6 +237,17 @@ struct RmaBackend {
     StdBackend::spin_pause(site, spins);
   }
 
+  // Whether T1 takes a view (V1; the default). Off: word-by-word reads, one operation each, for comparison.
+  static bool& read_views() noexcept {
+    static bool on = true;
+    return on;
+  }
+  // Negative control only (never in measured runs): the view survives the thief's own stores and answers T5.
+  static bool& plant_stale_view() noexcept {
+    static bool planted = false;
+    return planted;
+  }
+
   // Polls at T4 that found ListTransient raised, by this thread (a diagnostic for the run's report).
   static std::uint64_t& t4_polls() noexcept {
     thread_local std::uint64_t n = 0;
@@ -211,6 +261,55 @@ struct RmaBackend {
   }
 
  private:
+  // This thread's view of one victim's part (V1): its header words and its first entries, as one Get read them.
+  class ThiefView {
+   public:
+    // Reads `rank`'s part of `window` (one operation) and makes it the view.
+    ThiefView& take(RmaWindow& window, int rank) {
+      window_ = &window;
+      rank_ = rank;
+      entries_.resize(std::min(window.capacity(), std::max(kFirstEntries, widest_)));
+      window.get_view(rank, static_cast<std::uint32_t>(entries_.size()), header_, entries_.data());
+      widest_ = std::max(widest_, std::min(window.capacity(), word(kEntryCount.disp)));
+      return *this;
+    }
+    bool covers(const RmaWindow& window, int rank) const noexcept { return window_ == &window && rank_ == rank; }
+    std::uint32_t word(MPI_Aint disp) const noexcept {
+      std::uint32_t w = 0;
+      std::memcpy(&w, header_ + disp, sizeof w);
+      return w;
+    }
+    // Copies the cell at `disp` from the view; false when the view does not hold it.
+    bool answer(MPI_Aint disp, void* out, std::size_t bytes) const noexcept {
+      if (disp + static_cast<MPI_Aint>(bytes) <= kHeaderBytes) {
+        std::memcpy(out, header_ + disp, bytes);
+        return true;
+      }
+      const MPI_Aint body = static_cast<MPI_Aint>(entries_.size() * sizeof(SegmentEntry));
+      if (disp < kEntries || disp + static_cast<MPI_Aint>(bytes) > kEntries + body) return false;
+      std::memcpy(out, reinterpret_cast<const std::byte*>(entries_.data()) + (disp - kEntries), bytes);
+      return true;
+    }
+    void end() noexcept { window_ = nullptr; }
+
+   private:
+    // Entries a view reads at least (768 bytes); more once a victim's list was seen longer.
+    static constexpr std::uint32_t kFirstEntries = 64;
+    const RmaWindow* window_ = nullptr;
+    int rank_ = -1;
+    std::byte header_[kHeaderBytes]{};
+    std::vector<SegmentEntry> entries_;
+    std::uint32_t widest_ = 0;
+  };
+  static ThiefView& view() noexcept {
+    thread_local ThiefView v;
+    return v;
+  }
+  static void end_view() noexcept {
+    if (!plant_stale_view()) view().end();
+  }
+  static bool stale_view_answers(Site site) noexcept { return plant_stale_view() && site == Site::kThiefRereadFront; }
+
   static constexpr bool releases(Mo mo) noexcept {
     return mo == Mo::kRelease || mo == Mo::kAcqRel || mo == Mo::kSeqCst;
   }

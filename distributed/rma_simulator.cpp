@@ -363,7 +363,7 @@ class Model {
       }
       case Step::kTryVictim: return try_victim(t, r);
       case Step::kT1: {
-        k.front_read = victim(k).front;  // T1
+        k.front_read = victim(k).front;  // T1, with T2, the entry count and the entries: one view (V1)
         k.step = Step::kT2;
         return at_time(op(t, current(k), lat_.get, false), r);
       }
@@ -379,10 +379,8 @@ class Model {
         }
         k.mid = defect_ == Defect::kEmptyShare ? end : simulation::steal_mid(k.front_read, end);
         k.old_end = end;
-        double c = op(t, current(k), lat_.get, false);  // the entry count
-        c = op(c, current(k), lat_.get, false);         // the entries
-        ++active_;                                      // A1
-        c = op(c, 0, lat_.fetch_op, true);
+        ++active_;  // A1
+        const double c = op(t, 0, lat_.fetch_op, true);
         k.step = Step::kT3;
         return at_time(c, r);
       }
@@ -639,7 +637,7 @@ class Model {
     }
     ++attempts_;
     ++k.round_tried;
-    const double c = op(t, current(k), lat_.fetch_op, true);  // L1
+    const double c = op(t, current(k), lat_.fetch_op, true);  // L2: the exchange (no L1 probe over RMA, V3)
     if (victim(k).locked) {
       ++k.victim_index;
       return at_time(c, r);
@@ -647,7 +645,7 @@ class Model {
     victim(k).locked = true;  // L2
     k.steal_start = t;
     k.step = Step::kT1;
-    at_time(op(c, current(k), lat_.cas, true), r);
+    at_time(c, r);
   }
 
   void install(double t, int r) {

@@ -9,9 +9,11 @@
 //               `light_ns`); lists carry over between frames (§4.2.1) as in frontsteal-mpi.
 //   rma         the owner pays `claim` per item (+ `progress_call`, at most every `progress_every`, when the
 //               transport needs target progress);
-//               a thief runs the protocol's operations in order — L1 fetch-op, L2 CAS, T1 get, T2 get, the
-//               entry count and the entries (two gets), A1 fetch-op on rank 0, T3 put, T4 get, T5 get, L3
-//               fetch-op — each a round trip of its calibrated latency. The victim's End drops when T3
+//               a thief runs the protocol's operations in order, as rma_backend.hpp issues them — L2 fetch-op
+//               (the exchange; no L1 probe), one get for T1, T2, the entry count and the entries (the thief's
+//               view, priced as a 4-byte get: --calibrate times the view too), A1 fetch-op on rank 0, T3 put,
+//               T4 get, T5 get, L3 fetch-op: 7 operations, each a round trip of its calibrated latency (a busy
+//               lock costs the exchange alone). The victim's End drops when T3
 //               completes; items the victim claimed past mid before then stay with it (the T5 re-read).
 //   request     the owner pays `poll` per item (across nodes: at most every `progress_every`); a request
 //               travels half a ping-pong, waits for the victim's next poll (an idle victim answers at once), the reply

@@ -7,18 +7,20 @@
 //   0    Front[p]            u32   owner writes locally (O3, I1); thieves MPI_Get (T1, T5)
 //   4    ListTransient[p]    u32   owner writes locally (O1, O4); thieves MPI_Get (T4)
 //   8    End[p]              u32   thieves MPI_Put (T3); owner reads locally (O2), writes at install (I2)
+//   12   entry count         u32   owner writes locally at install, under its own LockList; thieves MPI_Get
 //   64   LockList[p]         u32   accumulate operations only (MPI_Compare_and_swap L2, MPI_Fetch_and_op
 //                                  MPI_NO_OP L1, MPI_Accumulate MPI_REPLACE L3), by thieves and by the owner
 //                                  on itself: the standard makes only same-type accumulates atomic with each
 //                                  other, so this word is never touched by a plain load, store, Get or Put
 //   128  active              u32   rank 0's copy only: the termination count (A1-A3, E4), accumulates only
 //   136  next item           u64   rank 0's copy only: the central-counter baseline, accumulates only
-//   192  entry count         u32   owner writes locally at install, under its own LockList; thieves MPI_Get
 //   256  lifeline notice     u64   the frame is over (lifelines.hpp): other ranks MPI_Accumulate (REPLACE); the
 //                                  rank reads it locally; reset by the rank (an accumulate on itself) between frames
 //   264  lifeline invite     u64   a donor's invitation, same ownership as the notice
 //   320  lifeline hungry[k]  u64   k < kMaxLifelines: rank (p - 2^k) mod P registered here, same ownership
 //   512  entries[capacity]   SegmentEntry {begin, end, flat_begin} u32 x 3 each, same ownership as the entry count
+// A thief's view of a victim (get_view): bytes [0, 16) and the first entries in ONE MPI_Get, through a derived
+// datatype that skips the lock, the counters and the lifeline words (accumulate-only: no Get may touch them).
 //
 // MPI GUARANTEES RELIED ON (MPI 3.1 §11.4, §11.5, §11.7)
 //   G1  Passive target: MPI_Win_lock_all once at start, MPI_Win_unlock_all at the end; every RMA operation is
@@ -61,6 +63,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "core/activity_list.hpp"
 #include "core/id_range.hpp"
@@ -95,7 +98,7 @@ inline constexpr WinField<std::uint32_t> kEnd{8};
 inline constexpr WinField<std::uint32_t> kLock{64};
 inline constexpr WinField<std::uint32_t> kActive{128};
 inline constexpr WinField<std::uint64_t> kNextItem{136};
-inline constexpr WinField<std::uint32_t> kEntryCount{192};
+inline constexpr WinField<std::uint32_t> kEntryCount{12};
 inline constexpr WinField<std::uint64_t> kLifelineNotice{256};
 inline constexpr WinField<std::uint64_t> kLifelineInvite{264};
 inline constexpr std::uint32_t kMaxLifelines = 24;  // ranks up to 2^24
@@ -103,6 +106,8 @@ inline constexpr WinField<std::uint64_t> lifeline_hungry(std::uint32_t k) noexce
   return {320 + 8 * static_cast<MPI_Aint>(k)};
 }
 inline constexpr MPI_Aint kEntries = 512;
+// The thief-visible header that a view reads whole: Front, ListTransient, End and the entry count.
+inline constexpr MPI_Aint kHeaderBytes = 16;
 
 // A list entry lies in the window as core's SegmentEntry (activity_list.hpp): three u32, no padding.
 static_assert(sizeof(SegmentEntry) == 12 && std::is_trivially_copyable_v<SegmentEntry>);
@@ -145,6 +150,8 @@ class RmaWindow {
   RmaWindow(const RmaWindow&) = delete;
   RmaWindow& operator=(const RmaWindow&) = delete;
   ~RmaWindow() {
+    for (MPI_Datatype& t : view_types_)
+      if (t != MPI_DATATYPE_NULL) MPI_Type_free(&t);
     MPI_Win_unlock_all(win_);
     MPI_Win_free(&win_);
   }
@@ -154,6 +161,8 @@ class RmaWindow {
   MPI_Win handle() const noexcept { return win_; }
   std::uint32_t capacity() const noexcept { return capacity_; }
   std::uint64_t bytes_moved() const noexcept { return bytes_; }
+  // One-sided operations this rank issued (each Get, Put, accumulate and view is one, whatever its size).
+  std::uint64_t operations() const noexcept { return operations_; }
 
   // ---- this rank's own part: local memory (G2) ----
   template <class T>
@@ -210,6 +219,18 @@ class RmaWindow {
     check_mpi(MPI_Get(out, ints, MPI_UINT32_T, rank, entry_disp(first), ints, MPI_UINT32_T, win_), "MPI_Get entries");
     completed(rank, count * sizeof(SegmentEntry), 0);
   }
+  // A thief's view of `rank`'s part in one operation: the header (kHeaderBytes: Front, ListTransient, End, the entry
+  // count) into `header`, and entries [0, entries) into `out`. One MPI_Get whose target datatype is two blocks,
+  // so the accumulate-only words between them are not read (G4).
+  void get_view(int rank, std::uint32_t entries, std::byte* header, SegmentEntry* out) {
+    MPI_Datatype& target = view_type(entries);
+    std::byte* buffer = view_buffer(entries);
+    const int bytes = static_cast<int>(kHeaderBytes + entries * sizeof(SegmentEntry));
+    check_mpi(MPI_Get(buffer, bytes, MPI_BYTE, rank, 0, 1, target, win_), "MPI_Get view");
+    completed(rank, static_cast<std::size_t>(bytes), 0);
+    std::memcpy(header, buffer, kHeaderBytes);
+    if (entries > 0) std::memcpy(out, buffer + kHeaderBytes, entries * sizeof(SegmentEntry));
+  }
   // `bytes` bytes at `disp` of `rank`'s part, as they lie (a list entry: core's SegmentEntry).
   void get_bytes(int rank, MPI_Aint disp, void* out, std::size_t bytes) {
     const int n = static_cast<int>(bytes);
@@ -236,11 +257,34 @@ class RmaWindow {
     if (read_before_flush_) before_flush = result;  // only the planted defect touches it before the flush
     flush(rank);
     bytes_ += bytes;
+    operations_ += 1;
     return read_before_flush_ ? before_flush : result;
+  }
+
+  // The view's target datatype for `entries` entries (built once per size, freed with the window) and its buffer.
+  MPI_Datatype& view_type(std::uint32_t entries) {
+    if (view_types_.size() <= entries) view_types_.resize(entries + 1, MPI_DATATYPE_NULL);
+    MPI_Datatype& t = view_types_[entries];
+    if (t == MPI_DATATYPE_NULL) {
+      const int lengths[2] = {static_cast<int>(kHeaderBytes), static_cast<int>(entries * sizeof(SegmentEntry))};
+      const MPI_Aint displacements[2] = {0, kEntries};
+      check_mpi(MPI_Type_create_hindexed(entries > 0 ? 2 : 1, lengths, displacements, MPI_BYTE, &t),
+                "MPI_Type_create_hindexed");
+      check_mpi(MPI_Type_commit(&t), "MPI_Type_commit");
+    }
+    return t;
+  }
+  std::byte* view_buffer(std::uint32_t entries) {
+    const std::size_t bytes = kHeaderBytes + entries * sizeof(SegmentEntry);
+    if (view_buffer_.size() < bytes) view_buffer_.resize(bytes);
+    return view_buffer_.data();
   }
 
   void* base_ = nullptr;
   MPI_Win win_ = MPI_WIN_NULL;
+  std::vector<MPI_Datatype> view_types_;
+  std::vector<std::byte> view_buffer_;
+  std::uint64_t operations_ = 0;
   std::uint32_t capacity_;
   int rank_ = 0;
   bool unified_ = false;

@@ -179,6 +179,7 @@ void SchedulerRun::finish(SchedulerResult& result) {
   stats.bytes += static_cast<double>(win_.bytes_moved()) - bytes_before_;
   stats.t4_wait_s = runner_->protocol().t4_wait_s();
   stats.t4_spins = static_cast<double>(runner_->protocol().t4_polls());
+  stats.steal_operations = static_cast<double>(runner_->protocol().stolen_operations());
   result.ranks.resize(rank_ == 0 ? static_cast<std::size_t>(ranks_) : 0);
   MPI_Gather(&stats, kRankStatFields, MPI_DOUBLE, rank_ == 0 ? result.ranks.data() : nullptr, kRankStatFields,
              MPI_DOUBLE, 0, MPI_COMM_WORLD);

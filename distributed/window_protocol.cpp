@@ -11,6 +11,10 @@
 #include "core/policies.hpp"
 #include "distributed/rma_backend.hpp"
 
+// The window backend skips the lock probe (V3); every other backend keeps it.
+static_assert(!frontsteal::kProbesLock<frontsteal::mpi::RmaBackend<>>);
+static_assert(frontsteal::kProbesLock<frontsteal::StdBackend>);
+
 namespace frontsteal::mpi {
 namespace {
 
@@ -70,9 +74,11 @@ class CoreOverWindow final : public WindowProtocol {
   }
   StealOutcome try_steal(int victim, const StealHooks& hooks) override {
     const std::uint64_t polls_before = Backend::t4_polls();
+    const std::uint64_t operations_before = win_.operations();
     WindowObserver<Thief<Backend, Policy>> observe(thief_, win_, victim, hooks, t4_wait_s_);
     const StealOutcome out = thief_.try_steal(*slots_[static_cast<std::size_t>(victim)], observe);
     t4_polls_ += Backend::t4_polls() - polls_before;
+    if (out == StealOutcome::kStolen) stolen_operations_ += win_.operations() - operations_before;
     return out;
   }
   std::span<const IdRange> share() const override { return thief_.share(); }
@@ -80,6 +86,7 @@ class CoreOverWindow final : public WindowProtocol {
   void join() override { active_.join(); }
   bool all_idle() override { return active_.all_idle(); }
   void rearm(std::uint32_t ranks) override { active_.rearm(ranks); }
+  std::uint64_t stolen_operations() const override { return stolen_operations_; }
   double t4_wait_s() const override { return t4_wait_s_; }
   std::uint64_t t4_polls() const override { return t4_polls_; }
   std::string_view backend_name() const override { return Backend::kName; }
@@ -100,6 +107,7 @@ class CoreOverWindow final : public WindowProtocol {
   Thief<Backend, Policy> thief_;
   double t4_wait_s_ = 0;
   std::uint64_t t4_polls_ = 0;
+  std::uint64_t stolen_operations_ = 0;
 };
 
 template <OwnerFence F1>
@@ -110,6 +118,16 @@ std::unique_ptr<WindowProtocol> with_policy(RmaWindow& win, int ranks, WindowPol
 }
 
 }  // namespace
+
+void read_victims_in_views(bool on) noexcept {
+  RmaBackend<OwnerFence::kCpu>::read_views() = on;
+  RmaBackend<OwnerFence::kWinSync>::read_views() = on;
+}
+
+void plant_stale_view(bool on) noexcept {
+  RmaBackend<OwnerFence::kCpu>::plant_stale_view() = on;
+  RmaBackend<OwnerFence::kWinSync>::plant_stale_view() = on;
+}
 
 std::unique_ptr<WindowProtocol> make_window_protocol(RmaWindow& win, int ranks, bool win_sync_f1, WindowPolicy policy) {
   if (win_sync_f1) return with_policy<OwnerFence::kWinSync>(win, ranks, policy);

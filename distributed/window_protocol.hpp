@@ -54,7 +54,9 @@ class WindowProtocol {
   virtual void join() = 0;
   virtual bool all_idle() = 0;
   virtual void rearm(std::uint32_t ranks) = 0;
-  // Diagnostics: time spent waiting at T4, and polls there that found ListTransient raised.
+  // Diagnostics: one-sided operations spent by steals that succeeded (rma_backend.hpp V1-V3: 7 without a wait at
+  // T4), time spent waiting at T4, and polls there that found ListTransient raised.
+  virtual std::uint64_t stolen_operations() const = 0;
   virtual double t4_wait_s() const = 0;
   virtual std::uint64_t t4_polls() const = 0;
   virtual std::string_view backend_name() const = 0;
@@ -63,5 +65,13 @@ class WindowProtocol {
 
 // `win_sync_f1`: F1 is MPI_Win_sync as well as the CPU fence (rma_backend.hpp, G3).
 std::unique_ptr<WindowProtocol> make_window_protocol(RmaWindow& win, int ranks, bool win_sync_f1, WindowPolicy policy);
+
+// Whether thieves read a victim in one view (rma_backend.hpp V1; the default) or word by word (--thief-reads words,
+// for comparison). Set before any steal.
+void read_victims_in_views(bool on) noexcept;
+
+// Negative control only (--plant-defect stale-view): the thief's view of a victim outlives its own stores and
+// answers T5 (rma_backend.hpp, V1's control). Set before any steal.
+void plant_stale_view(bool on) noexcept;
 
 }  // namespace frontsteal::mpi

@@ -3,6 +3,8 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstddef>
+#include <cstring>
 #include <thread>
 
 #include "distributed/rank_watchdog.hpp"
@@ -73,6 +75,15 @@ WindowSelfTest run_window_self_test(RmaWindow& win, MPI_Comm comm) {
       win.get_entries(q, 0, 1, &entry);
       expect.equal("MPI_Get of the list body (entry 0's begin)", q, entry.ids.begin, kEntryMark + u(q));
       expect.equal("MPI_Get of the list body (entry 0's flat_begin)", q, entry.flat_begin, u(q));
+      std::byte header[kHeaderBytes];
+      SegmentEntry viewed{};
+      win.get_view(q, 1, header, &viewed);
+      std::uint32_t front = 0, count = 0;
+      std::memcpy(&front, header + kFront.disp, sizeof front);
+      std::memcpy(&count, header + kEntryCount.disp, sizeof count);
+      expect.equal("the thief's view, one MPI_Get (Front)", q, front, kFrontMark + u(q));
+      expect.equal("the thief's view, one MPI_Get (the entry count)", q, count, kCountMark + u(q));
+      expect.equal("the thief's view, one MPI_Get (entry 0's begin)", q, viewed.ids.begin, kEntryMark + u(q));
       const std::uint32_t before = win.fetch_and_op(0, kActive, std::uint32_t{1}, MPI_SUM);
       expect.equal("MPI_Fetch_and_op(MPI_SUM) of the active count (A1)", 0, before, kActiveBase + u(t));
       const std::uint64_t next = win.fetch_and_op(0, kNextItem, std::uint64_t{3}, MPI_SUM);
