@@ -25,8 +25,10 @@
 // body, are one MPI_Get (RmaWindow::get_view: the header and the first entries), not one round trip each:
 //   V1  The load at T1 (Site::kThiefReadFront) of another rank's Front takes the view and answers from it; the
 //       load at T2 and reads of that rank's entry count and entries answer from the view (an entry beyond it is
-//       an MPI_Get of its own, the view kept). Every other access by this thread ends the view: T3's Put, A1, a
-//       fence, T4, T5, L3; so T4 and T5 are always fresh operations, after T3's flush (G5).
+//       an MPI_Get of its own, the view kept). Every other access by this thread to another rank's part, every
+//       accumulate and every fence ends the view: T3's Put, A1, F2, T4, T5, L3; so T4 and T5 are always fresh
+//       operations, after T3's flush (G5). The owner path's plain words (this rank's own part) leave it alone:
+//       they are not the victim's, and O1-O4 stay the plain loads and stores they were.
 //   V2  Why it is the sequential code: core's thief reads these words after L2, holding the victim's LockList.
 //       While it holds it, End, the entry count and the body are written by no one (stealing_protocol.hpp I1,
 //       I2: thieves and installs write them only under that lock), so one Get returns what T2 and the body
@@ -151,21 +153,20 @@ struct RmaBackend {
 
   template <class T>
   static T load(const Atomic<T>& a, Mo mo, Site site, Where) {
-    ThiefView& v = view();
-    if (!a.accumulate_only() && !a.local()) {
+    if (a.local() && !a.accumulate_only()) return a.ref().load(StdBackend::native(mo));  // the owner path: no view
+    if (!a.accumulate_only()) {
       if (site == Site::kThiefReadFront && read_views())
-        return v.take(a.window(), a.rank()).word(a.field().disp);  // V1: T1
-      if (v.covers(a.window(), a.rank()) && (site == Site::kThiefReadEnd || stale_view_answers(site)))
-        return v.word(a.field().disp);  // V1: T2 (and T5 under the planted defect only)
+        return view().take(a.window(), a.rank()).word(a.field().disp);  // V1: T1
+      if (view_covers(a.window(), a.rank()) && (site == Site::kThiefReadEnd || stale_view_answers(site)))
+        return view().word(a.field().disp);  // V1: T2 (and T5 under the planted defect only)
     }
     end_view();
     if (a.accumulate_only()) return a.window().atomic_read(a.rank(), a.field());
-    if (a.local()) return a.ref().load(StdBackend::native(mo));
     return a.window().get(a.rank(), a.field());
   }
   template <class T>
   static void store(const Atomic<T>& a, T v, Mo mo, Site, Where) {
-    end_view();
+    if (!a.local() || a.accumulate_only()) end_view();  // the owner path's own words leave the view alone
     if (a.accumulate_only()) {
       if (a.local() && releases(mo)) a.window().sync();  // G3: publish this rank's earlier local stores
       a.window().accumulate_replace(a.rank(), a.field(), v);
@@ -214,7 +215,7 @@ struct RmaBackend {
   template <class T>
   static T read(const Cell<T>& c, Where) {
     T v;
-    if (!c.local() && view().covers(c.window(), c.rank()) && view().answer(c.disp(), &v, sizeof(T))) return v;  // V1
+    if (!c.local() && view_covers(c.window(), c.rank()) && view().answer(c.disp(), &v, sizeof(T))) return v;  // V1
     if (c.local()) {
       std::memcpy(&v, c.window().local_bytes(c.disp()), sizeof(T));
     } else {
@@ -266,14 +267,12 @@ struct RmaBackend {
    public:
     // Reads `rank`'s part of `window` (one operation) and makes it the view.
     ThiefView& take(RmaWindow& window, int rank) {
-      window_ = &window;
-      rank_ = rank;
       entries_.resize(std::min(window.capacity(), std::max(kFirstEntries, widest_)));
       window.get_view(rank, static_cast<std::uint32_t>(entries_.size()), header_, entries_.data());
       widest_ = std::max(widest_, std::min(window.capacity(), word(kEntryCount.disp)));
+      viewed() = {&window, rank};
       return *this;
     }
-    bool covers(const RmaWindow& window, int rank) const noexcept { return window_ == &window && rank_ == rank; }
     std::uint32_t word(MPI_Aint disp) const noexcept {
       std::uint32_t w = 0;
       std::memcpy(&w, header_ + disp, sizeof w);
@@ -290,13 +289,10 @@ struct RmaBackend {
       std::memcpy(out, reinterpret_cast<const std::byte*>(entries_.data()) + (disp - kEntries), bytes);
       return true;
     }
-    void end() noexcept { window_ = nullptr; }
 
    private:
     // Entries a view reads at least (768 bytes); more once a victim's list was seen longer.
     static constexpr std::uint32_t kFirstEntries = 64;
-    const RmaWindow* window_ = nullptr;
-    int rank_ = -1;
     std::byte header_[kHeaderBytes]{};
     std::vector<SegmentEntry> entries_;
     std::uint32_t widest_ = 0;
@@ -305,8 +301,21 @@ struct RmaBackend {
     thread_local ThiefView v;
     return v;
   }
+  // Which part this thread's view holds (window null: none). Trivially initialised, so checking and ending it
+  // costs a thread-local load or store, not the guarded initialisation of the view's buffers.
+  struct Viewed {
+    const RmaWindow* window = nullptr;
+    int rank = -1;
+  };
+  static Viewed& viewed() noexcept {
+    thread_local constinit Viewed v{};
+    return v;
+  }
+  static bool view_covers(const RmaWindow& window, int rank) noexcept {
+    return viewed().window == &window && viewed().rank == rank;
+  }
   static void end_view() noexcept {
-    if (!plant_stale_view()) view().end();
+    if (!plant_stale_view()) viewed().window = nullptr;
   }
   static bool stale_view_answers(Site site) noexcept { return plant_stale_view() && site == Site::kThiefRereadFront; }
 
