@@ -8,8 +8,8 @@
 //   4    ListTransient[p]    u32   owner writes locally (O1, O4); thieves MPI_Get (T4)
 //   8    End[p]              u32   thieves MPI_Put (T3); owner reads locally (O2), writes at install (I2)
 //   12   entry count         u32   owner writes locally at install, under its own LockList; thieves MPI_Get
-//   64   LockList[p]         u32   accumulate operations only (MPI_Compare_and_swap L2, MPI_Fetch_and_op
-//                                  MPI_NO_OP L1, MPI_Accumulate MPI_REPLACE L3), by thieves and by the owner
+//   64   LockList[p]         u32   accumulate operations only (MPI_Fetch_and_op MPI_REPLACE L2, MPI_Accumulate
+//                                  MPI_REPLACE L3; no L1 probe, rma_backend.hpp V3), by thieves and by the owner
 //                                  on itself: the standard makes only same-type accumulates atomic with each
 //                                  other, so this word is never touched by a plain load, store, Get or Put
 //   128  active              u32   rank 0's copy only: the termination count (A1-A3, E4), accumulates only
