@@ -98,7 +98,8 @@ void HierarchicalRank::run_frame(int frame, std::vector<std::uint32_t>& counts, 
   std::fill(item_costs_.begin(), item_costs_.end(), 0.0f);
   rank_active_ = true;  // E4 re-armed the window's count with every rank in it
   waiting_ = false;
-  first_item_done_ = dry_reported_ = false;
+  first_item_done_.store(false, std::memory_order_relaxed);
+  dry_reported_ = false;
   frame_over_.store(false, std::memory_order_relaxed);
   for (auto& w : workers_) {
     w->log.clear();
@@ -366,8 +367,10 @@ void HierarchicalRank::execute(Worker& w, ItemId id) {
       return window_.unclaimed() >= 2;
     });
   }
-  if (w.index == 0 && !first_item_done_) {  // --die, --stall, --slow act on the main thread, after its first item
-    first_item_done_ = true;
+  // --die and --slow act after the rank's first item of the frame, whichever thread runs it: with threads of
+  // several ranks sharing few cores, the main thread may run no item in a frame (its siblings and other ranks'
+  // thieves took the rank's list while it waited for a core), and the fault must still come.
+  if (!first_item_done_.load(std::memory_order_relaxed) && !first_item_done_.exchange(true)) {
     if (faults_.first_item) faults_.first_item(frame_);
   }
   append_merging(w.log, {id, id + 1});

@@ -140,8 +140,8 @@ class HierarchicalRank {
   std::chrono::steady_clock::time_point next_probe_{};  // worker 0, waiting: its next round of random victims
   std::chrono::steady_clock::duration probe_interval_{};
   HierFaultHooks faults_;
-  bool first_item_done_ = false;  // worker 0, this frame
-  bool dry_reported_ = false;     // worker 0, this frame
+  std::atomic<bool> first_item_done_{false};  // any worker, this frame: the first item's faults ran
+  bool dry_reported_ = false;                 // worker 0, this frame
   std::atomic<bool> stop_{false};
   std::barrier<> start_, end_;
   std::vector<std::thread> threads_started_;

@@ -127,7 +127,7 @@ TEST_CASE("a rank's statistics travel as a flat array of doubles", "[distributed
   CHECK(mpi::kRankStatFields * sizeof(double) == sizeof(mpi::RankStats));
   mpi::RankStats s;
   s.busy_s = 1.5;
-  s.local_steals = 7;  // the last field
+  s.steal_operations = 7;  // the last field
   const double* flat = reinterpret_cast<const double*>(&s);
   CHECK(flat[0] == 1.5);
   CHECK(flat[mpi::kRankStatFields - 1] == 7);
