@@ -60,6 +60,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -150,7 +151,7 @@ class RmaWindow {
   RmaWindow(const RmaWindow&) = delete;
   RmaWindow& operator=(const RmaWindow&) = delete;
   ~RmaWindow() {
-    for (MPI_Datatype& t : view_types_)
+    for (auto& [entries, t] : view_types_)
       if (t != MPI_DATATYPE_NULL) MPI_Type_free(&t);
     MPI_Win_unlock_all(win_);
     MPI_Win_free(&win_);
@@ -263,8 +264,7 @@ class RmaWindow {
 
   // The view's target datatype for `entries` entries (built once per size, freed with the window) and its buffer.
   MPI_Datatype& view_type(std::uint32_t entries) {
-    if (view_types_.size() <= entries) view_types_.resize(entries + 1, MPI_DATATYPE_NULL);
-    MPI_Datatype& t = view_types_[entries];
+    MPI_Datatype& t = view_types_.try_emplace(entries, MPI_DATATYPE_NULL).first->second;
     if (t == MPI_DATATYPE_NULL) {
       const int lengths[2] = {static_cast<int>(kHeaderBytes), static_cast<int>(entries * sizeof(SegmentEntry))};
       const MPI_Aint displacements[2] = {0, kEntries};
@@ -282,7 +282,7 @@ class RmaWindow {
 
   void* base_ = nullptr;
   MPI_Win win_ = MPI_WIN_NULL;
-  std::vector<MPI_Datatype> view_types_;
+  std::map<std::uint32_t, MPI_Datatype> view_types_;  // by entry count: a few sizes in a run
   std::vector<std::byte> view_buffer_;
   std::uint64_t operations_ = 0;
   std::uint32_t capacity_;
