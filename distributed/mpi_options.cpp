@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdlib>
+#include <filesystem>
 
 #include "core/id_range.hpp"
 #include "distributed/synthetic_cost.hpp"
@@ -71,6 +72,22 @@ CLI::Validator scene_validator() {
       "");
 }
 
+// A file the run will write at its end: its folder must exist and the path must not name a folder, so that a
+// typing mistake is refused before MPI starts, not found after the last frame.
+CLI::Validator output_file_validator() {
+  return CLI::Validator(
+      [](std::string& v) -> std::string {
+        if (v.empty()) return "needs a file name";
+        const std::filesystem::path p(v);
+        std::error_code ec;
+        if (std::filesystem::is_directory(p, ec)) return "'" + v + "' is a folder, not a file";
+        const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+        if (!std::filesystem::is_directory(folder, ec)) return "the folder of '" + v + "' does not exist";
+        return {};
+      },
+      "FILE");
+}
+
 CLI::Validator owner_progress_validator() {
   return CLI::Validator(
       [](std::string& v) -> std::string {
@@ -117,8 +134,10 @@ Options parse_options(int argc, char** argv) {
   cli.option("--skew", o.skew, "synthetic: the heavy fifth of the ids (a window that moves each frame) costs K x")
       ->check(CLI::Range(1u, 10000u));
   cli.option("--tolerance", o.tolerance, "tessellation pixel tolerance")->check(CLI::PositiveNumber);
-  cli.option("--json", o.json, "also write the results (or, with --calibrate, the latencies) as JSON to this file");
-  cli.option("--markdown", o.markdown, "also write the medians with 95 % CIs and the noise verdict as markdown");
+  cli.option("--json", o.json, "also write the results (or, with --calibrate, the latencies) as JSON to this file")
+      ->check(output_file_validator());
+  cli.option("--markdown", o.markdown, "also write the medians with 95 % CIs and the noise verdict as markdown")
+      ->check(output_file_validator());
   cli.option("--plots", o.plots,
              "also write plots to this directory: frame time per scheduler, busy and idle time "
              "per rank (PNG through gnuplot, with their data and script)");

@@ -60,6 +60,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <exception>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -153,6 +154,10 @@ class RmaWindow {
   ~RmaWindow() {
     for (auto& [entries, t] : view_types_)
       if (t != MPI_DATATYPE_NULL) MPI_Type_free(&t);
+    // MPI_Win_free is collective. While an exception unwinds this rank, the others are elsewhere (in a
+    // barrier, in the next frame): the free would wait for them until the watchdog ended the job, and the
+    // exception's message would never be printed. The handler that caught it ends the job with MPI_Abort.
+    if (std::uncaught_exceptions() > 0) return;
     MPI_Win_unlock_all(win_);
     MPI_Win_free(&win_);
   }
