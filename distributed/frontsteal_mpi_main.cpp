@@ -4,17 +4,20 @@
 // results reported by rank 0 (mpi_report.hpp); --rounds runs every scheduler in paired rounds with an A/A twin
 // and a planted slowdown and decides each comparison (paired_rounds.hpp); --calibrate measures the one-sided latencies
 // (calibration.hpp). The protocol itself: core/stealing_protocol.hpp over rma_backend.hpp (window_protocol.hpp); the
-// transport's progress: owner_progress.hpp.
+// transport's progress: owner_progress.hpp and progress_thread.hpp.
 #include <mpi.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <optional>
+#include <string_view>
 
 #include "distributed/calibration.hpp"
 #include "distributed/mpi_report.hpp"
 #include "distributed/paired_rounds.hpp"
+#include "distributed/progress_thread.hpp"
 #include "distributed/rank_ledger.hpp"
 #include "distributed/rank_watchdog.hpp"
 #include "distributed/scheduler_run.hpp"
@@ -114,16 +117,21 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // hier's worker threads run beside the main thread's MPI calls (FUNNELED); a progress thread calls MPI
+  // beside the main thread (MULTIPLE).
+  const double thread_sleep_us = o.progress_thread_us();
+  const int required = thread_sleep_us >= 0 ? MPI_THREAD_MULTIPLE : MPI_THREAD_FUNNELED;
+  const char* required_name = thread_sleep_us >= 0 ? "MPI_THREAD_MULTIPLE (--progress-thread)" : "MPI_THREAD_FUNNELED";
   int provided = 0;
-  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  MPI_Init_thread(&argc, &argv, required, &provided);
   int rank = 0, ranks = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  if (provided < MPI_THREAD_FUNNELED) {  // hier's worker threads run beside the main thread's MPI calls
+  if (provided < required) {
     if (rank == 0)
-      std::fprintf(stderr, "%s: this MPI provides thread level %d, below MPI_THREAD_FUNNELED; refusing to run\n",
-                   fm::kProgram.data(), provided);
+      std::fprintf(stderr, "%s: this MPI provides thread level %d, below %s; refusing to run\n", fm::kProgram.data(),
+                   provided, required_name);
     MPI_Finalize();
     return 2;
   }
@@ -141,8 +149,10 @@ int main(int argc, char** argv) {
     fm::read_victims_in_views(o.thief_views);
     // A refusal ends this scope normally: the window is freed before MPI_Finalize on every path.
     status = refuse_unusable_window(win, rank);
+    std::optional<fm::ProgressThread> progress_thread;  // stopped before the window is freed
     if (status == 0) {
-      const fm::ProgressChoice progress = fm::resolve_owner_progress(o.owner_progress, MPI_COMM_WORLD);
+      const fm::ProgressChoice progress = fm::resolve_owner_progress(o.owner_progress, thread_sleep_us, MPI_COMM_WORLD);
+      if (thread_sleep_us >= 0) progress_thread.emplace(MPI_COMM_WORLD, thread_sleep_us);
       if (o.calibrate) {
         status = fm::calibrate(o, rank, ranks, win, progress);
       } else {
@@ -154,11 +164,21 @@ int main(int argc, char** argv) {
         }
         status = run_all(o, wl, rank, ranks, win, progress);
       }
+      if (progress_thread && rank == 0 && !o.quiet) {
+        std::fprintf(stderr, "%s: rank 0's progress thread called MPI_Iprobe %llu times\n", fm::kProgram.data(),
+                     static_cast<unsigned long long>(progress_thread->calls()));
+      }
     }
     MPI_Barrier(MPI_COMM_WORLD);
     fm::ledger_exit(fm::LedgerState::kFinished);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: rank %d: %s\n", fm::kProgram.data(), rank, e.what());
+    if (thread_sleep_us >= 0 && std::string_view(e.what()).find("MPI_Win_allocate") != std::string_view::npos) {
+      std::fprintf(stderr,
+                   "%s: rank %d: --progress-thread needs a one-sided component that accepts MPI_THREAD_MULTIPLE; "
+                   "Open MPI 4.1's osc/pt2pt does not (over TCP use --mca osc ucx; docs/mpi.md)\n",
+                   fm::kProgram.data(), rank);
+    }
     std::fflush(stderr);
     MPI_Abort(MPI_COMM_WORLD, 1);
   }

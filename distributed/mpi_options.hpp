@@ -4,6 +4,7 @@
 // launcher calls 0 prints, and every rank exits 2 (report::CommandLine's usage contract).
 #pragma once
 
+#include <cstdlib>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -36,6 +37,10 @@ struct Options {
   bool require_steals = false;
   std::string owner_fence = "cpu";
   std::string owner_progress = "auto";  // auto | off | U (µs between the busy owner's progress calls; 0: every item)
+  std::string progress_thread = "off";  // off | U (µs the rank's progress thread sleeps between calls; 0: yields)
+  double progress_thread_us() const {
+    return progress_thread == "off" ? -1 : std::strtod(progress_thread.c_str(), nullptr);
+  }
   bool quiet = false;
   // Paired rounds (paired_rounds.hpp): 0 = one pass of --frames per scheduler; R > 0 = R rounds, each running
   // every arm for --frames frames in a fresh random order, then each arm compared with --reference.

@@ -155,6 +155,7 @@ report::Json run_json(const RunSummary& run, const std::vector<SchedulerResult>&
   }
   js["owner_progress"] = run.progress.describe();
   js["owner_progress_us"] = run.progress.every_us;
+  js["progress_thread_sleep_us"] = run.progress.thread_sleep_us;
   js["noise_warning"] = noise_warning(results);
   js["work_ns"] = run.work_ns;  // with scene and items: what frontsteal-mpi-simulate --validate needs to re-run it
   js["skew"] = run.skew;

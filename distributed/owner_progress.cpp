@@ -6,8 +6,9 @@
 
 namespace frontsteal::mpi {
 
-ProgressChoice resolve_owner_progress(const std::string& option, MPI_Comm comm) {
+ProgressChoice resolve_owner_progress(const std::string& option, double thread_sleep_us, MPI_Comm comm) {
   ProgressChoice c;
+  c.thread_sleep_us = thread_sleep_us;
   MPI_Comm node;
   MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
   int node_size = 0, size = 0;
@@ -47,6 +48,11 @@ std::string ProgressChoice::describe() const {
     s << "MPI_Iprobe after every item";
   } else {
     s << "MPI_Iprobe at most every " << every_us << " us";
+  }
+  if (thread_sleep_us == 0) {
+    s << "; progress thread: MPI_Iprobe, yielding between calls";
+  } else if (thread_sleep_us > 0) {
+    s << "; progress thread: MPI_Iprobe, sleeping " << thread_sleep_us << " us between calls";
   }
   s << " (ranks " << (one_node ? "share one node" : "span several nodes") << "; ";
   if (!open_mpi) {

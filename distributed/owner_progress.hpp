@@ -14,7 +14,7 @@
 // request owner's poll and rank 0 inside central-counter chunks use the same gate (PollGate). Cost, measured
 // by --calibrate ("owner progress call"): 98 ns on osc/sm, 3.2 us over TCP (5.3 us with mpi_yield_when_idle).
 // auto = off when the library is Open MPI, every rank shares one node and no --mca osc other than sm is set
-// (osc/sm); otherwise every kAutoProgressEveryUs.
+// (osc/sm); otherwise every kAutoProgressEveryUs, with or without a progress thread.
 // WHY AN INTERVAL (measured, docs/mpi.md "Two hosts"; 2 ranks over TCP, 1 us light items): a call after EVERY item
 // mostly left a thief's operations, and request messages, unanswered until the victim ran dry (0, 3 and 0
 // steals in three 10-frame runs; the cause inside Open MPI was not pinned down), while every 10-200 us gave
@@ -24,8 +24,11 @@
 // Stealing over TCP works once every result is read after its flush (rma_window.hpp, G1): a thief that
 // never steals over TCP is a read-before-flush bug, not the transport.
 //
-// A progress THREAD is not an option with this build: osc/pt2pt refuses MPI_THREAD_MULTIPLE in Open MPI 4.1,
-// and a thread spinning in MPI takes a core from the owner on a machine with fewer cores than ranks.
+// A progress THREAD (progress_thread.hpp, --progress-thread) serves operations whatever the workers do, but needs
+// MPI_THREAD_MULTIPLE, which osc/pt2pt refuses in Open MPI 4.1 (over TCP: osc/ucx), and takes time from the
+// workers on a machine with fewer cores than threads. auto keeps these calls beside it: over TCP on this 2-vCPU
+// VM a yielding thread alone was scheduled about once per 0.4 ms and steals took 1.2-1.4 ms; with the owner's
+// calls as well, 0.7 ms (docs/mpi.md, "A progress thread").
 #pragma once
 
 #include <mpi.h>
@@ -92,12 +95,14 @@ class OwnerProgress {
 // osc component was asked for (Open MPI: OMPI_MCA_osc, which mpirun's --mca osc sets) and whether every rank
 // shares one node. Collective over comm.
 struct ProgressChoice {
-  double every_us = -1;  // < 0: off
+  double every_us = -1;         // < 0: off
+  double thread_sleep_us = -1;  // the rank's progress thread (progress_thread.hpp) sleeps this long; < 0: none
   bool one_node = false;
   bool open_mpi = false;      // MPI_Get_library_version starts with "Open MPI"
   std::string osc_requested;  // "" when the launcher did not say
   std::string describe() const;
 };
-ProgressChoice resolve_owner_progress(const std::string& option, MPI_Comm comm);
+// thread_sleep_us: --progress-thread resolved (< 0: no thread).
+ProgressChoice resolve_owner_progress(const std::string& option, double thread_sleep_us, MPI_Comm comm);
 
 }  // namespace frontsteal::mpi
