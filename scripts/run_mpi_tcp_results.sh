@@ -1,6 +1,6 @@
 #!/bin/bash
 # run_mpi_tcp_results.sh — regenerates results/distributed/'s TCP results (two network namespaces, every byte over TCP):
-# the one-sided latencies (calibration_np2_tcp.*), frontsteal-mpi at 2, 3 and 4 ranks with all four schedulers (np{2,3,4}_synthetic20000_tcp.*, plots in
+# the one-sided latencies (calibration_np2_tcp.*; over osc/ucx with a progress thread, calibration_np2_tcp_ucx.*), frontsteal-mpi at 2, 3 and 4 ranks with all four schedulers (np{2,3,4}_synthetic20000_tcp.*, plots in
 # plots_np{2,3,4}_tcp/), the --owner-progress sweep (owner_progress_sweep_tcp.txt), the remote steal's latency
 # in frames: the thief's one-Get view against word-by-word reads, and osc/pt2pt against osc/ucx with and without
 # a progress thread (5 interleaved rounds, steal_latency_tcp_np2.md),
@@ -20,6 +20,9 @@ out=results/distributed
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 echo "run_mpi_tcp_results: the TCP calibration (calibration_np2_tcp.json)"
 NS_RANKS=1,1 timeout 300 $ns mpirun "$mpi" --calibrate --json $out/calibration_np2_tcp.json > $out/calibration_np2_tcp.txt 2>&1
+echo "run_mpi_tcp_results: the TCP calibration over osc/ucx with a progress thread (calibration_np2_tcp_ucx.json)"
+NS_RANKS=1,1 NS_OSC=ucx timeout 300 $ns mpirun "$mpi" --calibrate --progress-thread 0 \
+  --json $out/calibration_np2_tcp_ucx.json > $out/calibration_np2_tcp_ucx.txt 2>&1
 for spec in 2:1,1 3:2,1 4:2,2; do
   np=${spec%%:*}; f=$out/np${np}_synthetic20000_tcp
   echo "run_mpi_tcp_results: $np ranks (namespaces ${spec#*:})"
