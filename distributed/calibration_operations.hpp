@@ -12,6 +12,9 @@ inline constexpr std::string_view kGet = "MPI_Get 4 B + MPI_Win_flush (remote)";
 inline constexpr std::string_view kPut = "MPI_Put 4 B + MPI_Win_flush (remote)";
 inline constexpr std::string_view kCompareAndSwap = "MPI_Compare_and_swap + flush (remote)";
 inline constexpr std::string_view kFetchAndOp = "MPI_Fetch_and_op SUM + flush (remote)";
+// 64 fetch-and-ops issued back to back and completed by one flush, the time divided by 64: what one atomic
+// occupies the slowest stage (the target's service, where the target's progress engine applies each one).
+inline constexpr std::string_view kFetchAndOpPipelined = "MPI_Fetch_and_op SUM x64 + one flush, per operation";
 inline constexpr std::string_view kFlush = "MPI_Win_flush alone (nothing pending)";
 inline constexpr std::string_view kWinSync = "MPI_Win_sync (owner F1)";
 inline constexpr std::string_view kClaimWithSync = "RMA owner claim, F1 = MPI_Win_sync + fence";

@@ -104,7 +104,10 @@ struct Latencies {
 };
 
 // Reads frontsteal-mpi --calibrate --json output (contents "calibration"); throws naming the file and the
-// operation it lacks. atomic_service = max(fetch_op - get, 50 ns): what an atomic costs beyond a plain get.
+// operation it lacks. atomic_service: with needs_target_progress, the per-operation time of 64 pipelined
+// fetch-and-ops (the target's progress engine applies each in turn; an upper bound on its service); on
+// shared memory, and for a calibration without that row, max(fetch_op - get, 50 ns): what an atomic costs
+// beyond a plain get. Over TCP that difference of two ~40 us latencies changed sign between runs.
 Latencies latencies_from_calibration(const std::string& path);
 
 enum class Scheduler : std::uint8_t { kRma, kRequest, kCentral, kStatic, kStaticSpace, kHier, kHierSeeded };

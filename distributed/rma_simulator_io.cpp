@@ -4,6 +4,7 @@
 #include <array>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -21,6 +22,14 @@ double operation_ns(const report::Json& doc, const std::string& path, std::strin
     if (op.at("operation").get<std::string>() == name) return op.at("median_ns").get<double>();
   }
   throw std::runtime_error(path + ": no operation '" + std::string(name) + "' (run frontsteal-mpi --calibrate --json)");
+}
+
+// The median of `name`, or nothing in a calibration written before that operation was timed.
+std::optional<double> optional_operation_ns(const report::Json& doc, std::string_view name) {
+  for (const report::Json& op : doc.at("operations")) {
+    if (op.at("operation").get<std::string>() == name) return op.at("median_ns").get<double>();
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -50,9 +59,10 @@ Latencies latencies_from_calibration(const std::string& path) {
   l.claim = operation_ns(doc, path, ops::kClaim);
   l.poll = operation_ns(doc, path, ops::kRequestPoll);
   l.progress_call = operation_ns(doc, path, ops::kProgressCall);
-  l.atomic_service = std::max(l.fetch_op - l.get, 50.0);
   const std::string osc = doc.value("osc_requested", "");
   l.needs_target_progress = !doc.value("one_node", true) || (!osc.empty() && osc.find("sm") == std::string::npos);
+  const std::optional<double> burst = optional_operation_ns(doc, ops::kFetchAndOpPipelined);
+  l.atomic_service = l.needs_target_progress && burst ? *burst : std::max(l.fetch_op - l.get, 50.0);
   l.source = path + (l.needs_target_progress ? " (transport without asynchronous target progress)"
                                              : " (shared memory, osc/sm)");
   return l;

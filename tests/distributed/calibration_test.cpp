@@ -101,6 +101,22 @@ TEST_CASE("an atomic costs at least 50 ns of its home rank's time", "[distribute
   CHECK(sim::latencies_from_calibration(file.path()).atomic_service == 50);
 }
 
+TEST_CASE("over a transport that needs the target's progress an atomic holds its home for the pipelined time",
+          "[distributed][calibration]") {
+  std::vector<mpi::CalibrationRow> rows = every_operation();
+  rows.push_back({std::string(ops::kFetchAndOpPipelined), 9000, 8900, 9100, 1000, false});
+  mpi::ProgressChoice tcp = shared_memory();
+  tcp.one_node = false;
+  const TempFile across_nodes(mpi::calibration_json(rows, 2, tcp).dump());
+  CHECK(sim::latencies_from_calibration(across_nodes.path()).atomic_service == 9000);
+  // On shared memory the origin applies the atomic itself: the difference to a get, as without the row.
+  const TempFile one_node(mpi::calibration_json(rows, 2, shared_memory()).dump());
+  CHECK(sim::latencies_from_calibration(one_node.path()).atomic_service == 300);
+  // A calibration written before the pipelined row: the difference, over TCP too.
+  const TempFile older(mpi::calibration_json(every_operation(), 2, tcp).dump());
+  CHECK(sim::latencies_from_calibration(older.path()).atomic_service == 300);
+}
+
 TEST_CASE("a calibration without an operation the simulator needs is refused, naming it",
           "[distributed][calibration]") {
   std::vector<mpi::CalibrationRow> rows = every_operation();
