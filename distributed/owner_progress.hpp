@@ -28,7 +28,7 @@
 // MPI_THREAD_MULTIPLE, which osc/pt2pt refuses in Open MPI 4.1 (over TCP: osc/ucx), and takes time from the
 // workers on a machine with fewer cores than threads. auto keeps these calls beside it: over TCP on this 2-vCPU
 // VM a yielding thread alone was scheduled about once per 0.4 ms and steals took 1.2-1.4 ms; with the owner's
-// calls as well, 0.7 ms (docs/mpi.md, "A progress thread").
+// calls as well, 0.7 ms (docs/mpi.md, "A progress thread per rank").
 #pragma once
 
 #include <mpi.h>

@@ -11,10 +11,11 @@
 // TCP without UCX) refuses that level: the window's allocation fails, and frontsteal-mpi says so. osc/ucx
 // (UCX, its TCP transport included) and osc/sm accept it.
 //
-// COST. A thread that never sleeps (0) takes a core's worth of time from the workers on a machine with fewer
-// cores than threads; sleeping S us between calls serves an operation within about S plus the kernel's timer
-// slack (about 50 us on Linux), so values below ~50 us behave alike. The thread does not feed the watchdog:
-// a rank whose workers hang still trips it.
+// COST. A thread that never sleeps (0) takes time from the workers on a machine with fewer cores than
+// threads; sleeping S us between calls adds the kernel's timer slack (about 50 us on Linux) to each sleep. On
+// the 2-vCPU VM, over TCP, yielding cost each frame 3-5 ms and left the steal latency where the owner's own calls
+// had it; sleeping 50 us made frames 2-3x longer, for reasons not pinned down (docs/mpi.md, "A progress thread
+// per rank"). The thread does not feed the watchdog: a rank whose workers hang still trips it.
 #pragma once
 
 #include <mpi.h>
