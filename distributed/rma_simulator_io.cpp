@@ -17,19 +17,17 @@ namespace {
 
 namespace ops = calibration_ops;
 
-double operation_ns(const report::Json& doc, const std::string& path, std::string_view name) {
-  for (const report::Json& op : doc.at("operations")) {
-    if (op.at("operation").get<std::string>() == name) return op.at("median_ns").get<double>();
-  }
-  throw std::runtime_error(path + ": no operation '" + std::string(name) + "' (run frontsteal-mpi --calibrate --json)");
-}
-
 // The median of `name`, or nothing in a calibration written before that operation was timed.
 std::optional<double> optional_operation_ns(const report::Json& doc, std::string_view name) {
   for (const report::Json& op : doc.at("operations")) {
     if (op.at("operation").get<std::string>() == name) return op.at("median_ns").get<double>();
   }
   return std::nullopt;
+}
+
+double operation_ns(const report::Json& doc, const std::string& path, std::string_view name) {
+  if (const std::optional<double> ns = optional_operation_ns(doc, name)) return *ns;
+  throw std::runtime_error(path + ": no operation '" + std::string(name) + "' (run frontsteal-mpi --calibrate --json)");
 }
 
 }  // namespace

@@ -208,6 +208,18 @@ class RmaWindow {
     check_mpi(MPI_Fetch_and_op(&operand, &found, mpi_datatype<T>(), rank, f.disp, op, win_), "MPI_Fetch_and_op");
     return completed(rank, op == MPI_NO_OP ? sizeof(T) : 2 * sizeof(T), found);
   }
+  // `count` fetch-and-ops on one word issued back to back and completed by one flush; returns the last old
+  // value. Counted as `count` operations (--calibrate's pipelined row).
+  template <class T>
+  T fetch_and_op_burst(int rank, WinField<T> f, T operand, MPI_Op op, std::size_t count) {
+    burst_results_.resize(count * sizeof(T));
+    T* found = reinterpret_cast<T*>(burst_results_.data());
+    for (std::size_t k = 0; k < count; ++k)
+      check_mpi(MPI_Fetch_and_op(&operand, &found[k], mpi_datatype<T>(), rank, f.disp, op, win_), "MPI_Fetch_and_op");
+    const T last = completed(rank, count * 2 * sizeof(T), found[count - 1]);
+    operations_ += count - 1;
+    return last;
+  }
   template <class T>
   T atomic_read(int rank, WinField<T> f) {
     return fetch_and_op(rank, f, T{}, MPI_NO_OP);
@@ -289,6 +301,7 @@ class RmaWindow {
   MPI_Win win_ = MPI_WIN_NULL;
   std::map<std::uint32_t, MPI_Datatype> view_types_;  // by entry count: a few sizes in a run
   std::vector<std::byte> view_buffer_;
+  std::vector<std::byte> burst_results_;  // fetch_and_op_burst's results, written by MPI until the flush
   std::uint64_t operations_ = 0;
   std::uint32_t capacity_;
   int rank_ = 0;
