@@ -8,6 +8,7 @@
 #include "distributed/idle_backoff.hpp"
 #include "distributed/rank_ledger.hpp"
 #include "distributed/rank_watchdog.hpp"
+#include "distributed/refill_budget.hpp"
 
 namespace frontsteal::mpi {
 namespace {
@@ -33,7 +34,8 @@ struct HierarchicalRank::Worker {
   Thief<StdBackend, Fenced> thief;
   std::vector<std::uint32_t> local_victims;
   RangeList log, chunk;
-  bool holding = false;  // counts in local_active_
+  bool holding = false;   // counts in local_active_
+  RefillHistory history;  // this frame's: what its next refill prices unknown items with, and caps them by
   double busy_s = 0, items = 0, local_steals = 0;
   std::uint64_t triangles = 0;
 };
@@ -50,8 +52,7 @@ HierarchicalRank::HierarchicalRank(const Options& o, Workload& wl, int rank, Win
       threads_(static_cast<std::uint32_t>(std::max(1, o.threads))),
       local_active_(0),
       start_(static_cast<std::ptrdiff_t>(threads_)),
-      end_(static_cast<std::ptrdiff_t>(threads_)),
-      mean_item_ns_(std::max(1.0, static_cast<double>(o.work_ns))) {
+      end_(static_cast<std::ptrdiff_t>(threads_)) {
   lifelines_ = lifelines;
   item_costs_.assign(wl.n, 0.0f);
   last_costs_.assign(wl.n, 0.0f);
@@ -104,23 +105,20 @@ void HierarchicalRank::run_frame(int frame, std::vector<std::uint32_t>& counts, 
   for (auto& w : workers_) {
     w->log.clear();
     w->triangles = 0;
+    w->history = {};
   }
   start_.arrive_and_wait();  // the frame's state above happens-before every worker's loop
   work(0);
   end_.arrive_and_wait();  // every worker's items and logs happen-before what follows
   // The rank's next list: every item its workers ran, in id order.
   RangeList all;
-  double busy = 0, items = 0;
   for (auto& w : workers_) {
     all.insert(all.end(), w->log.begin(), w->log.end());
     triangles += w->triangles;
-    busy += w->busy_s;
-    items += w->items;
   }
   std::sort(all.begin(), all.end(), [](const IdRange& a, const IdRange& b) { return a.begin < b.begin; });
   log.clear();
   for (const IdRange& r : all) append_merging(log, r);
-  if (items > 0) mean_item_ns_ = 1e9 * busy / items;
 }
 
 void HierarchicalRank::work(std::uint32_t t) {
@@ -156,49 +154,51 @@ void HierarchicalRank::work(std::uint32_t t) {
   }
 }
 
-// Claims items from the rank list into w's local list until they are worth --chunk-us by the last frame's times
-// (an item without one at the mean), at most kMaxChunk: by measured cost, not by count, so that a hot region's
-// heavy items stay in the rank list, stealable by other ranks. With --batch-claims on, one owner handshake per
-// run of consecutive ids (the rank's claims are serialized by the mutex, so the time saved is every sibling's);
-// off, one per item. The join comes first (under the mutex), so worker 0 never sees the local count at 0 while a
-// chunk is on its way to a worker.
+// Claims items from the rank list into w's local list until they are worth --chunk-us by the last frame's times,
+// items without one admitted as refill_budget.hpp says (priced by this worker's last item, their number capped),
+// at most kMaxChunk: by measured cost, not by count, so that a hot region's heavy items stay in the rank list,
+// stealable by other ranks. With --batch-claims on, one owner handshake per run of consecutive ids (the rank's
+// claims are serialized by the mutex, so the time saved is every sibling's); off, one per item. The join comes
+// first (under the mutex), so worker 0 never sees the local count at 0 while a chunk is on its way to a worker.
 bool HierarchicalRank::refill(Worker& w) {
   w.chunk.clear();
-  const double target_s = o_.chunk_us * 1e-6, mean_s = mean_item_ns_ * 1e-9;
   {
     std::lock_guard<std::mutex> lock(rank_mutex_);
     local_active_.join();  // A1 (local)
-    const auto worth = [&](ItemId id) {
+    const auto known_ns = [&](ItemId id) {
       const float known = last_costs_[id];
-      return known > 0 ? double{known} : mean_s;
+      return known > 0 ? 1e9 * double{known} : -1.0;
     };
-    double worth_s = 0;
+    RefillBudget budget(o_.chunk_us * 1e3, kMaxChunk, w.history, window_.unclaimed(), threads_);
     if (o_.batch_claims) {
-      // One handshake per run of consecutive ids: the run's ids up to the remaining worth (at least one).
-      for (std::uint32_t taken = 0; taken < kMaxChunk && worth_s < target_s;) {
+      // One handshake per run of consecutive ids: the run's ids the budget admits (at least one).
+      while (true) {
         const IdRange run = window_.unclaimed_run();
         std::uint32_t n = 0;
-        for (double planned = worth_s; run.begin + n < run.end && taken + n < kMaxChunk && planned < target_s; ++n) {
-          planned += worth(run.begin + n);
-        }
+        while (run.begin + n < run.end && budget.admit(known_ns(run.begin + n))) ++n;
+        if (n == 0) break;
         const std::optional<IdRange> ids = window_.try_claim_up_to(n);
         if (!ids) break;
         append_merging(w.chunk, *ids);
-        for (ItemId id = ids->begin; id < ids->end; ++id) worth_s += worth(id);
-        taken += ids->size();
+        if (ids->size() < n) break;  // End fell below the run: the rest of the list was stolen
       }
     } else {
-      for (std::uint32_t k = 0; k < kMaxChunk && worth_s < target_s; ++k) {
+      // One handshake per item; the next item's id is the one at Front (unclaimed_run), priced before the claim.
+      while (true) {
+        const IdRange run = window_.unclaimed_run();
+        if (run.empty() || !budget.admit(known_ns(run.begin))) break;
         const std::optional<ItemId> id = window_.try_claim();
         if (!id) break;
         append_merging(w.chunk, {*id, *id + 1});
-        worth_s += worth(*id);
       }
     }
     if (w.chunk.empty()) {
       local_active_.leave();
       return false;
     }
+    std::uint32_t taken = 0;
+    for (const IdRange& r : w.chunk) taken += r.size();
+    w.history.last_refill = taken;
   }
   w.owner.install(w.chunk);
   w.holding = true;
@@ -360,6 +360,7 @@ void HierarchicalRank::execute(Worker& w, ItemId id) {
   if (!item_costs_.empty()) item_costs_[id] = static_cast<float>(took);  // each id runs once: no two writers
   w.busy_s += took;
   w.items += 1;
+  w.history.last_item_ns = took * 1e9;
   if (w.index == 0 && progress_.maybe_call(Clock::now())) progress_calls_ += 1;  // only worker 0 calls MPI
   if (w.index == 0 && lifelines_ != nullptr) {  // a donor: invite the ranks registered here, while it has spare
     lifelines_->invite_hungry([this] {

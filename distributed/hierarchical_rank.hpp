@@ -149,7 +149,6 @@ class HierarchicalRank {
   // The frame in progress (written by worker 0 before start_, read by every worker after it).
   int frame_ = 0;
   std::vector<std::uint32_t>* counts_ = nullptr;
-  double mean_item_ns_ = 0;
 
   // Worker 0's remote statistics.
   double progress_calls_ = 0;

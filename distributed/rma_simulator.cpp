@@ -12,6 +12,7 @@
 
 #include "distributed/cost_seeded_lists.hpp"
 #include "distributed/idle_backoff.hpp"
+#include "distributed/refill_budget.hpp"
 #include "distributed/synthetic_cost.hpp"
 #include "papers/simulation/event_queue.hpp"
 #include "papers/simulation/exactly_once_audit.hpp"
@@ -55,6 +56,10 @@ struct Worker {
   double next_at = 0;    // its one live event: an earlier one superseded by a wake-up is ignored
   Part pending = kIdle;
   double parts[kParts] = {};
+  // refill_budget.hpp's memory of this frame; the item it is running (the model learns an item's time when it
+  // ends, as the code does).
+  RefillHistory history;
+  double running_ns = 0;
   std::vector<std::uint32_t> siblings;  // local victims, in this worker's random order
 };
 
@@ -72,11 +77,9 @@ struct Rank {
   std::vector<std::pair<int, double>> pending;  // request: (thief, arrival)
   // hier: the rank list is [front, end) of `list` above; these are the rank's own.
   double mutex_free = 0;          // the rank mutex is free from this time on
-  double mean_ns = 0;             // the rank's mean item time of the last frame: the price of an unknown item
   std::int64_t local_active = 0;  // workers holding work (the local active count)
   bool rank_active = true;        // counts in the global active count
   bool frame_over = false;        // worker 0 read the global count at 0
-  double busy_ns = 0, items = 0;  // last frame's item time, for the chunk
   // LIFELINES: this rank's lifelines ((r + 2^k) mod P), the ranks registered here (hungry_in[k]: rank
   // (r - 2^k) mod P), the rank that invited this one (its directed victim), and the frame-end notice's arrival.
   std::vector<int> lifelines;
@@ -455,8 +458,6 @@ class Model {
       k.list = k.executed;
       std::sort(k.list.begin(), k.list.end());
     }
-    k.mean_ns = k.items > 0 ? k.busy_ns / k.items : std::max(1.0, w_.light_ns);
-    k.busy_ns = k.items = 0;
     k.mutex_free = 0;
     k.local_active = 0;
     k.rank_active = true;
@@ -471,6 +472,8 @@ class Model {
       x.front = x.end = x.failed_rounds = 0;
       x.holding = x.done = false;
       x.finish = x.since = x.installed = 0;
+      x.history = {};
+      x.running_ns = 0;
       x.pending = kIdle;
     }
   }
@@ -489,6 +492,10 @@ class Model {
     Rank& k = at(r);
     x.parts[x.pending] += t - x.since;  // what the worker did since its last event
     x.since = t;
+    if (x.pending == kWork) {  // its item ended at t
+      x.history.last_item_ns = x.running_ns;
+      x.pending = kIdle;
+    }
     if (x.done) return;
     if (t >= k.notice_at) k.frame_over = true;
     if (k.frame_over && x.front >= x.end) return finish(x, k, t);  // a worker still holding items runs them
@@ -520,8 +527,7 @@ class Model {
       x.parts[kClaims] += overhead;
       x.since = t + overhead;
       x.pending = kWork;
-      k.busy_ns += c;
-      k.items += 1;
+      x.running_ns = c;
       if (main_thread) {
         k.busy = true;
         k.busy_until = t + overhead + c;
@@ -536,7 +542,7 @@ class Model {
     // A chunk of the rank list, claimed under the rank mutex: one owner claim per item, or with batch_claims one
     // per run of consecutive ids (the code's list entries are such runs, merged).
     const double start = std::max(t, k.mutex_free);
-    const std::uint32_t n = chunk_worth(k, r);
+    const std::uint32_t n = chunk_worth(k, x, r);
     std::uint32_t claims = n;
     if (w_.batch_claims && n > 0) {
       claims = 1;
@@ -546,6 +552,7 @@ class Model {
     x.parts[kClaims] += k.mutex_free - t;
     t = x.since = k.mutex_free;
     if (n > 0) {
+      x.history.last_refill = n;
       x.list.assign(k.list.begin() + k.front, k.list.begin() + k.front + n);
       k.front += n;
       return hold_local(x, k, t, id);
@@ -581,21 +588,23 @@ class Model {
     stealing_step(t, r);
   }
 
-  // The items of rank r's next refill: until they are worth chunk_us by the last frame's costs, where the rank
-  // knows them (hier: the items it ran; hier-seeded: every item, shared), else at the rank's mean; at most
-  // kMaxChunk. Frame 0 knows no costs: chunk_us / mean items.
-  std::uint32_t chunk_worth(const Rank& k, int r) const {
+  // The items of worker x's next refill from rank r's list (refill_budget.hpp, as hierarchical_rank.cpp's
+  // refill): priced by the last frame's costs where the rank knows them (hier: the items it ran; hier-seeded:
+  // every item, shared), the others as the budget says.
+  std::uint32_t chunk_worth(const Rank& k, const Worker& x, int r) const {
     if (k.front >= k.end) return 0;  // a thief may set End below Front
-    const double target = w_.chunk_us * 1000;
-    double worth = 0;
+    RefillBudget budget(w_.chunk_us * 1000, kMaxChunk, x.history, k.end - k.front,
+                        static_cast<std::uint32_t>(threads_));
     std::uint32_t n = 0;
-    while (k.front + n < k.end && n < kMaxChunk && worth < target) {
+    while (k.front + n < k.end) {
       const ItemId id = k.list[k.front + n];
+      double known = -1;
       if (s_ == Scheduler::kHierSeeded && !predicted_.empty()) {
-        worth += predicted_[id];
-      } else {
-        worth += frame_ > 0 && last_runner_[id] == r ? cost(frame_ - 1, id) : k.mean_ns;
+        known = predicted_[id];
+      } else if (frame_ > 0 && last_runner_[id] == r) {
+        known = cost(frame_ - 1, id);
       }
+      if (!budget.admit(known)) break;
       ++n;
     }
     return n;
