@@ -90,7 +90,7 @@ void HierarchicalRank::run_frame(int frame, std::vector<std::uint32_t>& counts, 
   frame_ = frame;
   counts_ = &counts;
   // The refills' price list: the costs the caller handed over (hier-seeded: every rank's), else this rank's own
-  // times of the last frame (the items of its list; 0 for the others, priced at the mean).
+  // times of the last frame (the items of its list; 0 for the others: refill_budget.hpp prices them).
   if (shared_costs_given_) {
     shared_costs_given_ = false;
   } else {

@@ -14,8 +14,9 @@
 //   1. claim and run items from its own local list (wait-free);
 //   2. list empty: refill it with a chunk of the rank list — items claimed under rank_mutex_, one owner
 //      handshake per run of consecutive ids (--batch-claims on; one per item off), until they are worth
-//      ~--chunk-us by the last frame's item times (the rank's mean item time where an item has none): the rank
-//      list stays stealable by other ranks except for the chunks taken from it;
+//      ~--chunk-us by the last frame's item times (an item without one as refill_budget.hpp says: priced by the
+//      worker's last item, their number capped): the rank list stays stealable by other ranks except for the
+//      chunks taken from it;
 //   3. the rank list empty: steal half of a sibling's local list (node-local victims before remote ones);
 //   4. nothing in the rank: worker 0, once every local worker is dry (the local active count is 0 under
 //      rank_mutex_), leaves the global active count (A2 for the rank) and steals from other ranks (one-sided

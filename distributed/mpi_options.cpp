@@ -206,7 +206,8 @@ Options parse_options(int argc, char** argv) {
       ->check(CLI::Range(1, 256));
   cli.option("--chunk-us", o.chunk_us,
              "hier: a worker takes from its rank's list a chunk of about this much work (us, by the last frame's "
-             "measured item times, the rank's mean item time where an item has none; at most 256 items)")
+             "measured item times; an item without one priced by the worker's last item, their number capped; at "
+             "most 256 items)")
       ->check(CLI::Range(0.001, 1e6));
   std::string lifelines = "on";
   cli.option("--lifelines", lifelines,

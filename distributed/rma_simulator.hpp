@@ -24,7 +24,8 @@
 //   flat        rma, request and central at ranks x threads run one rank per worker (MPI everywhere).
 //   hier        ranks x `threads` workers (hierarchical_rank.hpp): a worker runs its local list (`local_claim` per
 //               item), refills it with a chunk of the rank list under the rank's mutex (`rank_lock` + `claim` per
-//               item; chunk = `chunk_us` of the rank's last-frame mean item time, at most 256 items), then steals
+//               item; chunk = `chunk_us` by the last frame's costs, unknown items as refill_budget.hpp says, at
+//               most 256 items), then steals
 //               half of a sibling's local list (`local_steal`); worker 0, once every sibling is dry, leaves the
 //               global count (A2) and runs the rma thief above against other ranks' lists, installing the share
 //               into its rank list; the others back off. Only worker 0 calls into MPI (its progress calls, and the

@@ -9,15 +9,21 @@
 # synthetic shapes (simulator_validation_np2.*; hier with one thread per rank: 4 ranks or 2 x 2 threads share 2
 # vCPUs here, which the model does not model). Needs a release build and a quiet machine. ~2 minutes. Then
 # scripts/run_mpi_tcp_results.sh: its SIMULATED rows (flat ranks, and the cascade's) read both calibrations.
-#   scripts/run_mpi_cascade_results.sh [BUILD_DIR]      (from the repository root; default build/release)
+# --simulated-only: only the SIMULATED files and the validation, from the committed calibration and measured runs
+# (deterministic: about a minute, and the machine need not be quiet).
+#   scripts/run_mpi_cascade_results.sh [--simulated-only] [BUILD_DIR]   (from the repository root; default build/release)
 set -eu
-case "${1:-}" in -h|--help) sed -n '2,13p' "$0"; exit 0 ;; esac
+case "${1:-}" in -h|--help) sed -n '2,15p' "$0"; exit 0 ;; esac
+simulated_only=0
+if [ "${1:-}" = --simulated-only ]; then simulated_only=1; shift; fi
 build=${1:-build/release}
 mpi=$build/distributed/frontsteal-mpi
 sim=$build/distributed/frontsteal-mpi-simulate
 out=results/distributed
 [ -x "$mpi" ] && [ -x "$sim" ] || { echo "run_mpi_cascade_results: build $build first (frontsteal-mpi, frontsteal-mpi-simulate)"; exit 2; }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+v=$out/np2_synthetic20000_validation_shm  # the validation's second measured run
+if [ $simulated_only = 0 ]; then
 echo "run_mpi_cascade_results: the shared-memory calibration (calibration_np2_shm.json)"
 { uptime; timeout 300 mpirun -np 2 "$mpi" --calibrate --json $out/calibration_np2_shm.json 2>&1; } \
   > $out/calibration_np2_shm.txt
@@ -29,10 +35,10 @@ for np in 2 4; do
       --watchdog-s 120 \
       --json $f.json --markdown $f.md 2>&1; echo "exit status $?"; } > $f.txt
 done
-f=$out/np2_synthetic20000_validation_shm
 echo "run_mpi_cascade_results: 2 ranks, synthetic:20000 (for the validation)"
-{ uptime; timeout 600 mpirun -np 2 "$mpi" --scene synthetic:20000 --frames 10 --watchdog-s 120 --json $f.json 2>&1;
-  echo "exit status $?"; } > $f.txt
+{ uptime; timeout 600 mpirun -np 2 "$mpi" --scene synthetic:20000 --frames 10 --watchdog-s 120 --json $v.json 2>&1;
+  echo "exit status $?"; } > $v.txt
+fi
 echo "run_mpi_cascade_results: SIMULATED ranks x 16 threads (about a minute)"
 h=$out/simulated_hier_4_256x16
 { $sim --shape cascade --items 2000000 --ranks 4,16,64,256 --threads 16 --limits \
@@ -45,6 +51,6 @@ h=$out/simulated_hier_4_256x16
   $sim --shape cascade --items 2000000 --ranks 64,256 --threads 16 --schedulers hier,hier-seeded --batch-claims off \
     --calibration $out/calibration_np2_shm.json --json ${h}_one_claim_per_item.json \
     --markdown ${h}_one_claim_per_item.md; } > $h.txt
-$sim --calibration $out/calibration_np2_shm.json --validate $out/np2_cascade20000_shm.json,$f.json \
+$sim --calibration $out/calibration_np2_shm.json --validate $out/np2_cascade20000_shm.json,$v.json \
   --json $out/simulator_validation_np2.json --markdown $out/simulator_validation_np2.md > $out/simulator_validation_np2.txt
 echo "run_mpi_cascade_results: done"
