@@ -8,9 +8,12 @@
 # the cost cascade's 4-256, simulated_cascade_4_256.*, plot in plots_simulated_cascade/). Run it after
 # scripts/run_mpi_cascade_results.sh, which regenerates the shared-memory calibration.
 # Needs root and ip(8) (tests/distributed/two_namespaces_tcp.sh) and a release build. ~6 minutes.
-#   scripts/run_mpi_tcp_results.sh [BUILD_DIR]      (from the repository root; default build/release)
+# --simulated-only: only the SIMULATED files, from the committed calibrations (deterministic; under a minute).
+#   scripts/run_mpi_tcp_results.sh [--simulated-only] [BUILD_DIR]   (from the repository root; default build/release)
 set -eu
-case "${1:-}" in -h|--help) sed -n '2,10p' "$0"; exit 0 ;; esac
+case "${1:-}" in -h|--help) sed -n '2,12p' "$0"; exit 0 ;; esac
+simulated_only=0
+if [ "${1:-}" = --simulated-only ]; then simulated_only=1; shift; fi
 build=${1:-build/release}
 mpi=$build/distributed/frontsteal-mpi
 sim=$build/distributed/frontsteal-mpi-simulate
@@ -18,6 +21,7 @@ ns=tests/distributed/two_namespaces_tcp.sh
 out=results/distributed
 [ -x "$mpi" ] && [ -x "$sim" ] || { echo "run_mpi_tcp_results: build $build first (frontsteal-mpi, frontsteal-mpi-simulate)"; exit 2; }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+if [ $simulated_only = 0 ]; then
 echo "run_mpi_tcp_results: the TCP calibration (calibration_np2_tcp.json)"
 NS_RANKS=1,1 timeout 300 $ns mpirun "$mpi" --calibrate --json $out/calibration_np2_tcp.json > $out/calibration_np2_tcp.txt 2>&1
 echo "run_mpi_tcp_results: the TCP calibration over osc/ucx with a progress thread (calibration_np2_tcp_ucx.json)"
@@ -104,6 +108,7 @@ for sched in ("rma", "hier"):
               f"{rng(frame, '.2f')} | {runs} |")
 PY
 rm -rf "$lat"
+fi
 echo "run_mpi_tcp_results: SIMULATED"
 $sim --calibration $out/calibration_np2_shm.json,$out/calibration_np2_tcp.json --json $out/simulated_ranks_2_256.json \
   --markdown $out/simulated_ranks_2_256.md --plots $out/plots_simulated > $out/simulated_ranks_2_256.txt
