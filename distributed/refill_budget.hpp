@@ -2,13 +2,13 @@
 // some of the items have no known cost. One rule for frontsteal-mpi (hierarchical_rank.cpp) and its model
 // (rma_simulator.cpp).
 //
-// WHY. A refill takes items until they are worth about --chunk-us. An item the rank has no time for (the first
-// frame; items a remote steal brought) used to be priced at a mean (--work-ns, or the rank's last frame), and on
-// a workload whose cost concentrates a chunk of "mean" items can be a hundred times the target: work in a local
-// list can be taken by the rank's own threads but not by other ranks, so one rank's threads ran a frame's tail
-// alone while every other rank waited (SIMULATED at 256 ranks x 16 threads on the cost cascade: frame 0 took
-// 2.3 ms for 1 ms of work per worker). The rule below measures before it commits, and never strands more than
-// a share of the rank's list:
+// WHY. A refill takes items until they are worth about --chunk-us. Some items have no time the rank knows (the
+// first frame; items a remote steal brought). Priced at a mean (--work-ns, or the rank's last frame), a chunk
+// of them can be a hundred times the target where the cost concentrates, and work in a local list can be taken
+// by the rank's own threads but not by other ranks: one rank's threads then run the frame's tail alone while
+// every other rank waits (SIMULATED at 256 ranks x 16 threads on the cost cascade, 1 ms of work per worker:
+// a first frame of 2.3 ms priced at the mean, 1.3 ms with this rule). So the rule measures before it commits,
+// and never strands more than a share of the rank's list:
 //   PRICE   an unknown item costs what this worker's last item of the frame took (consecutive ids are close in
 //           space, so their costs are alike); before its first item of the frame, the whole target (one item).
 //   GROWTH  a refill takes at most twice as many unknown items as the worker's previous refill took items (at

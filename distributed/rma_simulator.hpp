@@ -25,11 +25,11 @@
 //   hier        ranks x `threads` workers (hierarchical_rank.hpp): a worker runs its local list (`local_claim` per
 //               item), refills it with a chunk of the rank list under the rank's mutex (`rank_lock` + `claim` per
 //               item; chunk = `chunk_us` by the last frame's costs, unknown items as refill_budget.hpp says, at
-//               most 256 items), then steals
-//               half of a sibling's local list (`local_steal`); worker 0, once every sibling is dry, leaves the
-//               global count (A2) and runs the rma thief above against other ranks' lists, installing the share
-//               into its rank list; the others back off. Only worker 0 calls into MPI (its progress calls, and the
-//               target of other ranks' operations is attentive only when worker 0 is). A worker backing off
+//               most 256 items), then steals half of a sibling's local list (`local_steal`); worker 0, once
+//               every sibling is dry, leaves the global count (A2) and runs the rma thief above against other
+//               ranks' lists, installing the share into its rank list; the others back off. Only worker 0 calls
+//               into MPI (its progress calls, and the target of other ranks' operations is attentive only when
+//               worker 0 is). A worker backing off
 //               is woken when worker 0 installs a remote share and when the frame ends.
 //               A worker other than 0 backs off at most sibling_backoff_cap_us(chunk_us) (idle_backoff.hpp).
 //   hier-seeded hier whose next lists are contiguous blocks of equal predicted cost, each run heaviest first

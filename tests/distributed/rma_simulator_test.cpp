@@ -280,8 +280,8 @@ TEST_CASE("simulated batch claims spend less time claiming", "[rma_simulator]") 
 // The first frame knows no item's cost and starts from blocks of space, so a few ranks hold every heavy item.
 // A refill that priced unknown items at a mean took tens of heavy items into one worker's local list, where no
 // other rank can take them, and that rank's threads ran the frame's tail alone. refill_budget.hpp measures
-// before it commits: the first frame is then within a quarter of a later one (1.09 times). The previous rule,
-// pricing at the rank's mean, gave 1.62 times on this configuration: this test failed on it.
+// before it commits: the first frame is then within a quarter of a later one (1.09 times). Pricing unknown
+// items at the rank's mean instead gives 1.62 times on this configuration, and this test fails on it.
 TEST_CASE("simulated hier: a first frame of unknown costs does not strand heavy items in one rank", "[rma_simulator]") {
   sim::Workload w = small();
   w.shape = frontsteal::mpi::CostShape::kCascade;
